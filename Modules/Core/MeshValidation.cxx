@@ -1,0 +1,264 @@
+#include "MeshValidation.h"
+
+#include "TriangleMeshAdjacency.h"
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+
+namespace thintissue
+{
+namespace
+{
+
+void record(ValidationFinding& finding, const std::string& location)
+{
+  if (finding.count++ == 0)
+  {
+    finding.firstLocation = location;
+  }
+}
+
+std::string edgeLocation(const std::array<int, 2>& edge)
+{
+  return "edge " + std::to_string(edge[0]) + "-" + std::to_string(edge[1]) + " (at vertex " +
+    std::to_string(edge[0]) + ")";
+}
+
+/// Union-find for connected pieces.
+int findRoot(std::vector<int>& parent, int x)
+{
+  while (parent[x] != x)
+  {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+/// Number of fans around vertex v (1 for a manifold vertex): triangles
+/// around v are grouped when they share an edge incident to v.
+int countVertexFans(const TriangleMeshAdjacency& adjacency, int v,
+  std::vector<int>& scratchParent)
+{
+  const int* begin = adjacency.vertexTrianglesBegin(v);
+  const int count = adjacency.vertexTriangleCount(v);
+  scratchParent.resize(count);
+  std::iota(scratchParent.begin(), scratchParent.end(), 0);
+  for (int i = 0; i < count; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int e = adjacency.triangleEdges(begin[i])[k];
+      const auto& ends = adjacency.edge(e);
+      if (ends[0] != v && ends[1] != v)
+      {
+        continue;
+      }
+      for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
+      {
+        const int j = static_cast<int>(std::find(begin, begin + count, *t) - begin);
+        scratchParent[findRoot(scratchParent, i)] = findRoot(scratchParent, j);
+      }
+    }
+  }
+  int fans = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    fans += findRoot(scratchParent, i) == i ? 1 : 0;
+  }
+  return fans;
+}
+
+} // namespace
+
+bool MeshValidationReport::isClosedManifold() const
+{
+  return triangleCount > 0 && nonManifoldEdges.count == 0 && nonManifoldVertices.count == 0 &&
+    degenerateTriangles.count == 0 && duplicateTriangles.count == 0 &&
+    inconsistentlyOrientedEdges.count == 0 && borderEdges.count == 0;
+}
+
+bool MeshValidationReport::isClosedOutwardSingleSurface() const
+{
+  return isClosedManifold() && connectedComponents == 1 && signedVolume > 0.0;
+}
+
+std::string MeshValidationReport::toString() const
+{
+  std::ostringstream out;
+  out << "mesh '" << meshName << "': " << vertexCount << " vertices, " << triangleCount
+      << " triangles, " << edgeCount << " edges, " << connectedComponents
+      << (connectedComponents == 1 ? " piece" : " pieces") << ", enclosed volume " << signedVolume
+      << "\n";
+  const auto line = [&out](const char* what, const ValidationFinding& finding) {
+    out << "  " << what << ": " << finding.count;
+    if (finding.count > 0)
+    {
+      out << ", first at " << finding.firstLocation;
+    }
+    out << "\n";
+  };
+  line("non-manifold edges", nonManifoldEdges);
+  line("non-manifold vertices", nonManifoldVertices);
+  line("degenerate triangles", degenerateTriangles);
+  line("duplicate triangles", duplicateTriangles);
+  line("inconsistently oriented edges", inconsistentlyOrientedEdges);
+  line("open border edges", borderEdges);
+  line("unreferenced vertices", unreferencedVertices);
+  out << "  verdict: ";
+  if (isClosedOutwardSingleSurface())
+  {
+    out << "closed, manifold, outward-oriented single surface";
+  }
+  else if (isClosedManifold() && signedVolume < 0.0)
+  {
+    out << "closed manifold facing inward (negative volume): reverse its orientation";
+  }
+  else if (isClosedManifold())
+  {
+    out << "closed manifold in " << connectedComponents << " pieces";
+  }
+  else
+  {
+    out << "not a closed manifold surface";
+  }
+  return out.str();
+}
+
+MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degenerateAreaTolerance)
+{
+  MeshValidationReport report;
+  report.meshName = mesh.name;
+  report.vertexCount = mesh.vertexCount();
+  report.triangleCount = mesh.triangleCount();
+  const TriangleMeshAdjacency adjacency(mesh);
+  report.edgeCount = adjacency.edgeCount();
+
+  const BoundingBox box = mesh.boundingBox();
+  const double diagonal = box.isEmpty() ? 0.0 : box.diagonal().norm();
+  const double minimumArea = degenerateAreaTolerance * diagonal * diagonal;
+
+  // Degenerate and duplicate triangles.
+  std::vector<std::array<int, 3>> sortedTriangles(mesh.triangleCount());
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    const Triangle& tri = mesh.triangles[t];
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] ||
+      mesh.triangleArea(t) <= minimumArea)
+    {
+      record(report.degenerateTriangles,
+        "triangle " + std::to_string(t) + " (at vertex " + std::to_string(tri[0]) + ")");
+    }
+    std::array<int, 3> sorted = tri;
+    std::sort(sorted.begin(), sorted.end());
+    sortedTriangles[t] = sorted;
+  }
+  {
+    // Sort by vertex set; equal neighbours are duplicates. The reported
+    // location is the lowest-numbered duplicate.
+    std::vector<int> order(mesh.triangleCount());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return sortedTriangles[a] != sortedTriangles[b] ? sortedTriangles[a] < sortedTriangles[b]
+                                                      : a < b;
+    });
+    int firstDuplicate = -1;
+    int firstOriginal = -1;
+    for (std::size_t i = 1; i < order.size(); ++i)
+    {
+      if (sortedTriangles[order[i]] != sortedTriangles[order[i - 1]])
+      {
+        continue;
+      }
+      ++report.duplicateTriangles.count;
+      if (firstDuplicate < 0 || order[i] < firstDuplicate)
+      {
+        firstDuplicate = order[i];
+        firstOriginal = order[i - 1];
+      }
+    }
+    if (firstDuplicate >= 0)
+    {
+      report.duplicateTriangles.firstLocation = "triangle " + std::to_string(firstDuplicate) +
+        " (same vertices as triangle " + std::to_string(firstOriginal) + ", at vertex " +
+        std::to_string(mesh.triangles[firstDuplicate][0]) + ")";
+    }
+  }
+
+  // Edge classes and orientation.
+  for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
+  {
+    const int ei = static_cast<int>(e);
+    const int count = adjacency.edgeTriangleCount(ei);
+    if (count == 1)
+    {
+      record(report.borderEdges, edgeLocation(adjacency.edge(ei)));
+    }
+    else if (count > 2)
+    {
+      record(report.nonManifoldEdges, edgeLocation(adjacency.edge(ei)) + " shared by " +
+          std::to_string(count) + " triangles");
+    }
+    else
+    {
+      // Both triangles must traverse the edge in opposite directions.
+      const auto& ends = adjacency.edge(ei);
+      int forward = 0;
+      for (const int* t = adjacency.edgeTrianglesBegin(ei); t != adjacency.edgeTrianglesEnd(ei); ++t)
+      {
+        const Triangle& tri = mesh.triangles[*t];
+        for (int k = 0; k < 3; ++k)
+        {
+          if (tri[k] == ends[0] && tri[(k + 1) % 3] == ends[1])
+          {
+            ++forward;
+          }
+        }
+      }
+      if (forward != 1)
+      {
+        record(report.inconsistentlyOrientedEdges, edgeLocation(ends));
+      }
+    }
+  }
+
+  // Vertices: unreferenced and non-manifold (bow-tie).
+  std::vector<int> scratch;
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+  {
+    const int vi = static_cast<int>(v);
+    if (adjacency.vertexTriangleCount(vi) == 0)
+    {
+      record(report.unreferencedVertices, "vertex " + std::to_string(v));
+    }
+    else if (countVertexFans(adjacency, vi, scratch) > 1)
+    {
+      record(report.nonManifoldVertices, "vertex " + std::to_string(v));
+    }
+  }
+
+  // Connected pieces over triangles sharing vertices.
+  std::vector<int> parent(mesh.vertexCount());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Triangle& tri : mesh.triangles)
+  {
+    const int root = findRoot(parent, tri[0]);
+    parent[findRoot(parent, tri[1])] = root;
+    parent[findRoot(parent, tri[2])] = findRoot(parent, tri[0]);
+  }
+  std::size_t pieces = 0;
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+  {
+    const int vi = static_cast<int>(v);
+    if (adjacency.vertexTriangleCount(vi) > 0 && findRoot(parent, vi) == vi)
+    {
+      ++pieces;
+    }
+  }
+  report.connectedComponents = pieces;
+  report.signedVolume = mesh.signedVolume();
+  return report;
+}
+
+} // namespace thintissue

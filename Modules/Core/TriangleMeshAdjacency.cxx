@@ -1,0 +1,111 @@
+#include "TriangleMeshAdjacency.h"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace thintissue
+{
+
+TriangleMeshAdjacency::TriangleMeshAdjacency(const TriangleMesh& mesh)
+  : TriangleMeshAdjacency(mesh.vertexCount(), mesh.triangles)
+{
+}
+
+TriangleMeshAdjacency::TriangleMeshAdjacency(
+  std::size_t vertexCount, const std::vector<Triangle>& triangles)
+{
+  const int triangleCount = static_cast<int>(triangles.size());
+
+  // Vertex -> triangles by counting sort.
+  VertexTriangleOffsets.assign(vertexCount + 1, 0);
+  for (const Triangle& tri : triangles)
+  {
+    for (int v : tri)
+    {
+      ++VertexTriangleOffsets[v + 1];
+    }
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v)
+  {
+    VertexTriangleOffsets[v + 1] += VertexTriangleOffsets[v];
+  }
+  VertexTriangles.resize(VertexTriangleOffsets.back());
+  {
+    std::vector<int> fill(VertexTriangleOffsets.begin(), VertexTriangleOffsets.end() - 1);
+    for (int t = 0; t < triangleCount; ++t)
+    {
+      for (int v : triangles[t])
+      {
+        VertexTriangles[fill[v]++] = t;
+      }
+    }
+  }
+
+  // Edges: sort (min, max, triangle, corner) keys, then run-length group.
+  struct HalfEdgeKey
+  {
+    std::uint64_t vertices;
+    int triangle;
+    int corner;
+  };
+  std::vector<HalfEdgeKey> keys;
+  keys.reserve(3 * triangles.size());
+  for (int t = 0; t < triangleCount; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = static_cast<std::uint32_t>(triangles[t][k]);
+      const std::uint32_t b = static_cast<std::uint32_t>(triangles[t][(k + 1) % 3]);
+      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+      keys.push_back({ key, t, k });
+    }
+  }
+  std::sort(keys.begin(), keys.end(), [](const HalfEdgeKey& x, const HalfEdgeKey& y) {
+    return x.vertices != y.vertices ? x.vertices < y.vertices : x.triangle < y.triangle;
+  });
+  TriangleEdges.assign(triangles.size(), { -1, -1, -1 });
+  EdgeTriangles.resize(keys.size());
+  EdgeTriangleOffsets.clear();
+  EdgeTriangleOffsets.reserve(keys.size() / 2 + 2);
+  for (std::size_t i = 0; i < keys.size(); ++i)
+  {
+    if (i == 0 || keys[i].vertices != keys[i - 1].vertices)
+    {
+      EdgeTriangleOffsets.push_back(static_cast<int>(i));
+      Edges.push_back({ static_cast<int>(keys[i].vertices >> 32),
+        static_cast<int>(keys[i].vertices & 0xffffffffu) });
+    }
+    EdgeTriangles[i] = keys[i].triangle;
+    TriangleEdges[keys[i].triangle][keys[i].corner] = static_cast<int>(Edges.size()) - 1;
+  }
+  EdgeTriangleOffsets.push_back(static_cast<int>(keys.size()));
+}
+
+int TriangleMeshAdjacency::neighbourAcross(int t, int k) const
+{
+  const int e = TriangleEdges[t][k];
+  if (edgeTriangleCount(e) != 2)
+  {
+    return -1;
+  }
+  const int* first = edgeTrianglesBegin(e);
+  return first[0] == t ? first[1] : first[0];
+}
+
+int TriangleMeshAdjacency::findEdge(int a, int b) const
+{
+  for (const int* t = vertexTrianglesBegin(a); t != vertexTrianglesEnd(a); ++t)
+  {
+    for (int e : TriangleEdges[*t])
+    {
+      const auto& ends = Edges[e];
+      if ((ends[0] == a && ends[1] == b) || (ends[0] == b && ends[1] == a))
+      {
+        return e;
+      }
+    }
+  }
+  return -1;
+}
+
+} // namespace thintissue

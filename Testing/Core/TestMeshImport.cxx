@@ -1,0 +1,220 @@
+#include "MeshImport.h"
+#include "MeshValidation.h"
+#include "ThinTissueError.h"
+#include "ThinTissueTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace thintissue;
+using thintissue::testing::writeTemporaryFile;
+
+namespace
+{
+
+/// Expects readTriangleMesh(path) to throw a FileError whose message names
+/// the file and contains `problem`.
+void expectFileError(const std::string& path, const std::string& problem)
+{
+  try
+  {
+    readTriangleMesh(path);
+    ADD_FAILURE() << "no error for " << path;
+  }
+  catch (const FileError& error)
+  {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("'" + path + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find(problem), std::string::npos) << message;
+    EXPECT_EQ(error.path(), path);
+  }
+}
+
+// A unit cube with one texture chart per face: 8 positions, 14 texture
+// coordinates, quads. Seams everywhere; positions must stay welded.
+const char* const TexturedCubeObj = R"(# cube
+mtllib cube.mtl
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 1 1
+vt 0.00 0.33
+vt 0.25 0.33
+vt 0.50 0.33
+vt 0.75 0.33
+vt 1.00 0.33
+vt 0.00 0.66
+vt 0.25 0.66
+vt 0.50 0.66
+vt 0.75 0.66
+vt 1.00 0.66
+vt 0.25 0.00
+vt 0.50 0.00
+vt 0.25 1.00
+vt 0.50 1.00
+vn 0 0 -1
+g cube
+usemtl skin
+f 1/11 4/1 3/2 2/12
+f 5/7/ 6/8 7/14 8/13
+f 1/1 2/2 6/7 5/6
+f 2/2 3/3 7/8 6/7
+f 3/3 4/4 8/9 7/8
+f -4/4 -1/9 -5/10 -8/5
+)";
+
+} // namespace
+
+TEST(MeshImport, ObjQuadsAreTriangulatedAndSeamsKeepPositionsWelded)
+{
+  const std::string path = writeTemporaryFile("cube.obj", TexturedCubeObj);
+  const TriangleMesh cube = readTriangleMesh(path);
+  EXPECT_EQ(cube.vertexCount(), 8u);
+  EXPECT_EQ(cube.triangleCount(), 12u);
+  EXPECT_EQ(cube.textureCoordinates.size(), 14u);
+  ASSERT_EQ(cube.textureCorners.size(), 12u);
+  // First quad f 1/11 4/1 3/2 2/12 -> triangles (0,3,2) and (0,2,1).
+  EXPECT_EQ(cube.triangles[0], (Triangle{ 0, 3, 2 }));
+  EXPECT_EQ(cube.textureCorners[0], (Triangle{ 10, 0, 1 }));
+  EXPECT_EQ(cube.triangles[1], (Triangle{ 0, 2, 1 }));
+  // Negative (relative) indices: -4 is vertex 5 (index 4).
+  EXPECT_EQ(cube.triangles[10][0], 4);
+  EXPECT_FALSE(cube.hasNormals()); // normals given for one corner only
+  const MeshValidationReport report = validateTriangleMesh(cube);
+  EXPECT_TRUE(report.isClosedOutwardSingleSurface()) << report.toString();
+}
+
+TEST(MeshImport, ObjWriteReadRoundTrip)
+{
+  const std::string path = writeTemporaryFile("cube.obj", TexturedCubeObj);
+  TriangleMesh cube = readTriangleMesh(path);
+  cube.computeVertexNormals();
+  const std::string copy = (thintissue::testing::temporaryDirectory() / "cube-copy.obj").string();
+  writeObj(cube, copy);
+  const TriangleMesh again = readTriangleMesh(copy);
+  EXPECT_EQ(again.triangles, cube.triangles);
+  EXPECT_EQ(again.textureCorners, cube.textureCorners);
+  ASSERT_EQ(again.positions.size(), cube.positions.size());
+  for (std::size_t v = 0; v < cube.positions.size(); ++v)
+  {
+    EXPECT_EQ(again.positions[v], cube.positions[v]); // 17 digits: exact
+    EXPECT_LT((again.normals[v] - cube.normals[v]).norm(), 1e-12);
+  }
+  EXPECT_FALSE(std::filesystem::exists(copy + ".writing"));
+}
+
+TEST(MeshImport, StlIsWeldedByAssimp)
+{
+  const std::string stl = R"(solid tetra
+facet normal 0 0 -1
+outer loop
+vertex 0 0 0
+vertex 0 1 0
+vertex 1 0 0
+endloop
+endfacet
+facet normal 0 -1 0
+outer loop
+vertex 0 0 0
+vertex 1 0 0
+vertex 0 0 1
+endloop
+endfacet
+facet normal -1 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0 1
+vertex 0 1 0
+endloop
+endfacet
+facet normal 1 1 1
+outer loop
+vertex 1 0 0
+vertex 0 1 0
+vertex 0 0 1
+endloop
+endfacet
+endsolid tetra
+)";
+  const std::string path = writeTemporaryFile("tetra.stl", stl);
+  const TriangleMesh tetra = readTriangleMesh(path);
+  EXPECT_EQ(tetra.vertexCount(), 4u);
+  EXPECT_EQ(tetra.triangleCount(), 4u);
+  EXPECT_TRUE(validateTriangleMesh(tetra).isClosedOutwardSingleSurface());
+
+  MeshImportOptions unwelded;
+  unwelded.weldCoincidentVertices = false;
+  EXPECT_EQ(readTriangleMesh(path, unwelded).vertexCount(), 12u);
+}
+
+TEST(MeshImport, PlyOffAndGltfThroughAssimp)
+{
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                          "property float y\nproperty float z\nelement face 4\n"
+                          "property list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const std::string off = "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n"
+                          "3 0 3 2\n3 1 2 3\n";
+  const std::string gltf =
+    R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 72, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAACAAEAAAABAAMAAAADAAIAAQACAAMA"}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]}, {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}]})";
+  for (const auto& [name, text] :
+    { std::pair<std::string, std::string>{ "tetra.ply", ply }, { "tetra.off", off },
+      { "tetra.gltf", gltf } })
+  {
+    const TriangleMesh tetra = readTriangleMesh(writeTemporaryFile(name, text));
+    EXPECT_EQ(tetra.vertexCount(), 4u) << name;
+    EXPECT_EQ(tetra.triangleCount(), 4u) << name;
+    EXPECT_TRUE(validateTriangleMesh(tetra).isClosedOutwardSingleSurface()) << name;
+  }
+}
+
+TEST(MeshImport, BadInputGetsClearErrors)
+{
+  const auto directory = thintissue::testing::temporaryDirectory();
+  expectFileError((directory / "does-not-exist.obj").string(), "no such file");
+  std::filesystem::create_directories(directory / "a-folder.obj");
+  expectFileError((directory / "a-folder.obj").string(), "is a directory");
+  expectFileError(writeTemporaryFile("mesh.xyz", "1 2 3\n"), "unknown mesh format '.xyz'");
+  expectFileError(writeTemporaryFile("empty.obj", ""), "contains no triangles");
+  expectFileError(writeTemporaryFile("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"),
+    "contains no triangles");
+  expectFileError(writeTemporaryFile("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+    "line 2: non-finite coordinate");
+  expectFileError(writeTemporaryFile("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
+    "line 4: face vertex index 4 out of range (3 vertices defined so far)");
+  expectFileError(writeTemporaryFile("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
+    "line 4: face vertex index 0 out of range");
+  expectFileError(writeTemporaryFile("texture.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n"),
+    "line 4: face texture coordinate index 1 out of range");
+  expectFileError(writeTemporaryFile("garbage.obj", "v 0 zero 0\n"), "line 1: expected a number");
+  expectFileError(writeTemporaryFile("twocorners.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n"),
+    "line 3: face with 2 vertices");
+  expectFileError(writeTemporaryFile("garbage.stl", "this is not an STL file at all\n"),
+    "cannot be parsed");
+  expectFileError(writeTemporaryFile("empty.ply", ""), "cannot be parsed");
+}
+
+TEST(MeshImport, SteakLoadsAsOneClosedSurfaceWithItsTexture)
+{
+  const std::string data = thintissue::testing::sharedDataDirectory();
+  if (data.empty() || !std::filesystem::exists(data + "/steak/steak.obj"))
+  {
+    GTEST_SKIP() << "../shared/data/steak not present";
+  }
+  const TriangleMesh steak = readTriangleMesh(data + "/steak/steak.obj");
+  EXPECT_EQ(steak.vertexCount(), 2641u);
+  EXPECT_EQ(steak.triangleCount(), 5278u);
+  EXPECT_EQ(steak.textureCoordinates.size(), 1081u);
+  EXPECT_EQ(steak.textureCorners.size(), 5278u);
+  const MeshValidationReport report = validateTriangleMesh(steak);
+  EXPECT_TRUE(report.isClosedOutwardSingleSurface()) << report.toString();
+  // Thin: about 8.3 x 7.1 x 0.86 units.
+  const Vector3 size = steak.boundingBox().sizes();
+  EXPECT_NEAR(size.maxCoeff(), 8.3, 0.2);
+  EXPECT_NEAR(size.minCoeff(), 0.86, 0.1);
+}

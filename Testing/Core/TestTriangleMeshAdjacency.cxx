@@ -1,0 +1,57 @@
+#include "MeshPrimitives.h"
+#include "TriangleMeshAdjacency.h"
+
+#include <gtest/gtest.h>
+
+using namespace thintissue;
+
+TEST(TriangleMeshAdjacency, ClosedSurfaceHasTwoTrianglesPerEdge)
+{
+  SlabSurfaceParameters p;
+  p.cellsX = 5;
+  p.cellsY = 4;
+  const TriangleMesh slab = makeSlabSurface(p);
+  const TriangleMeshAdjacency adjacency(slab);
+  EXPECT_EQ(adjacency.edgeCount(), 3 * slab.triangleCount() / 2);
+  // Euler characteristic of a sphere-like surface.
+  EXPECT_EQ(static_cast<long>(slab.vertexCount()) - static_cast<long>(adjacency.edgeCount()) +
+      static_cast<long>(slab.triangleCount()),
+    2);
+  for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
+  {
+    EXPECT_EQ(adjacency.edgeTriangleCount(static_cast<int>(e)), 2);
+  }
+  for (int t = 0; t < static_cast<int>(slab.triangleCount()); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int n = adjacency.neighbourAcross(t, k);
+      ASSERT_GE(n, 0);
+      // The neighbour shares the edge's two vertices.
+      const int a = slab.triangles[t][k];
+      const int b = slab.triangles[t][(k + 1) % 3];
+      int shared = 0;
+      for (int v : slab.triangles[n])
+      {
+        shared += (v == a || v == b) ? 1 : 0;
+      }
+      EXPECT_EQ(shared, 2);
+    }
+  }
+}
+
+TEST(TriangleMeshAdjacency, OpenTriangleAndLookups)
+{
+  const std::vector<Triangle> triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
+  const TriangleMeshAdjacency adjacency(4, triangles);
+  EXPECT_EQ(adjacency.edgeCount(), 5u);
+  const int diagonal = adjacency.findEdge(2, 0);
+  ASSERT_GE(diagonal, 0);
+  EXPECT_EQ(adjacency.edgeTriangleCount(diagonal), 2);
+  EXPECT_EQ(adjacency.findEdge(1, 3), -1);
+  EXPECT_TRUE(adjacency.isBorderEdge(adjacency.findEdge(0, 1)));
+  EXPECT_EQ(adjacency.neighbourAcross(0, 0), -1);
+  EXPECT_EQ(adjacency.neighbourAcross(0, 2), 1);
+  EXPECT_EQ(adjacency.vertexTriangleCount(0), 2);
+  EXPECT_EQ(adjacency.vertexTriangleCount(3), 1);
+}

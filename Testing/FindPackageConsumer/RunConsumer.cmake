@@ -1,0 +1,29 @@
+# Installs the ThinTissue build into a scratch prefix, then configures,
+# builds and runs the consumer project against it.
+set(prefix "${WORK_DIR}/prefix")
+set(consumer_build "${WORK_DIR}/build")
+file(REMOVE_RECURSE "${prefix}")
+
+function(run_step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${code}):\n${out}")
+  endif()
+  message("${what}: ok")
+  set(step_output "${out}" PARENT_SCOPE)
+endfunction()
+
+run_step("install" "${CMAKE_COMMAND}" --install "${THINTISSUE_BUILD_DIR}" --prefix "${prefix}")
+set(launcher)
+find_program(ccache ccache)
+if(ccache)
+  set(launcher "-DCMAKE_CXX_COMPILER_LAUNCHER=${ccache}")
+endif()
+run_step("configure" "${CMAKE_COMMAND}" -S "${CONSUMER_SOURCE_DIR}" -B "${consumer_build}"
+  -G "${GENERATOR}" "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release ${launcher})
+run_step("build" "${CMAKE_COMMAND}" --build "${consumer_build}")
+run_step("run" "${consumer_build}/consumer")
+message("${step_output}")
+if(NOT step_output MATCHES "package works")
+  message(FATAL_ERROR "consumer did not confirm the package")
+endif()

@@ -1,0 +1,8 @@
+"""ThinTissue: VTK filters and sources for thin deformable tissues.
+
+Use next to VTK:  import vtk; import thintissue; thintissue.vtkThinSlabSource()
+"""
+# The wrapped modules derive from these VTK classes: load them first.
+from vtkmodules import vtkCommonCore, vtkCommonDataModel, vtkCommonExecutionModel  # noqa: F401
+
+from .ThinTissueVTKCore import *  # noqa: F401,F403
