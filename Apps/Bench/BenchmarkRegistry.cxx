@@ -14,11 +14,18 @@ BenchmarkReporter::BenchmarkReporter(std::ostream& out, std::string suite)
 {
 }
 
-void BenchmarkReporter::report(const std::string& caseName, const std::string& metric,
-  double value, const std::string& unit, std::optional<double> thesis)
+void BenchmarkReporter::report(const std::string& caseName,
+  const std::string& metric,
+  double value,
+  const std::string& unit,
+  std::optional<double> thesis)
 {
-  nlohmann::json line = { { "suite", Suite }, { "case", caseName }, { "metric", metric },
-    { "value", value }, { "unit", unit }, { "thesis", nullptr } };
+  nlohmann::json line = { { "suite", Suite },
+    { "case", caseName },
+    { "metric", metric },
+    { "value", value },
+    { "unit", unit },
+    { "thesis", nullptr } };
   if (thesis)
   {
     line["thesis"] = *thesis;
@@ -38,8 +45,9 @@ std::vector<BenchmarkSuite>& benchmarkSuites()
   return suites;
 }
 
-BenchmarkSuiteRegistration::BenchmarkSuiteRegistration(
-  const std::string& name, const std::string& description, BenchmarkSuiteFunction run)
+BenchmarkSuiteRegistration::BenchmarkSuiteRegistration(const std::string& name,
+  const std::string& description,
+  BenchmarkSuiteFunction run)
 {
   benchmarkSuites().push_back({ name, description, std::move(run) });
 }

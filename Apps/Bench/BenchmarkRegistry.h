@@ -31,8 +31,11 @@ class BenchmarkReporter
 {
 public:
   BenchmarkReporter(std::ostream& out, std::string suite);
-  void report(const std::string& caseName, const std::string& metric, double value,
-    const std::string& unit, std::optional<double> thesis = std::nullopt);
+  void report(const std::string& caseName,
+    const std::string& metric,
+    double value,
+    const std::string& unit,
+    std::optional<double> thesis = std::nullopt);
   /// A case that could not run (e.g. missing optional data), on stderr.
   void skip(const std::string& caseName, const std::string& reason);
   int reportCount() const { return Count; }
@@ -56,11 +59,12 @@ std::vector<BenchmarkSuite>& benchmarkSuites();
 
 struct BenchmarkSuiteRegistration
 {
-  BenchmarkSuiteRegistration(
-    const std::string& name, const std::string& description, BenchmarkSuiteFunction run);
+  BenchmarkSuiteRegistration(const std::string& name,
+    const std::string& description,
+    BenchmarkSuiteFunction run);
 };
 
-#define THINTISSUE_BENCHMARK_SUITE(identifier, name, description)                                 \
+#define THINTISSUE_BENCHMARK_SUITE(identifier, name, description)                                  \
   static void identifier(                                                                          \
     const ::thintissue::bench::BenchmarkContext&, ::thintissue::bench::BenchmarkReporter&);        \
   static const ::thintissue::bench::BenchmarkSuiteRegistration identifier##Registration(           \

@@ -35,8 +35,10 @@ std::string sizeLabel(const TriangleMesh& mesh)
   return std::to_string(mesh.triangleCount()) + " triangles";
 }
 
-void reportThroughput(BenchmarkReporter& reporter, const std::string& caseName,
-  std::size_t triangles, double seconds)
+void reportThroughput(BenchmarkReporter& reporter,
+  const std::string& caseName,
+  std::size_t triangles,
+  double seconds)
 {
   reporter.report(caseName, "time", seconds * 1e3, "ms");
   reporter.report(caseName, "throughput", static_cast<double>(triangles) / seconds, "triangles/s");
@@ -52,10 +54,10 @@ THINTISSUE_BENCHMARK_SUITE(ioSuite, "io", "mesh import: steak OBJ, 1M-triangle O
   if (std::filesystem::exists(steak))
   {
     std::size_t triangles = 0;
-    const double seconds = medianSeconds([&] { triangles = readTriangleMesh(steak).triangleCount(); },
-      repetitions);
-    reportThroughput(reporter, "steak obj (" + std::to_string(triangles) + " triangles)",
-      triangles, seconds);
+    const double seconds =
+      medianSeconds([&] { triangles = readTriangleMesh(steak).triangleCount(); }, repetitions);
+    reportThroughput(
+      reporter, "steak obj (" + std::to_string(triangles) + " triangles)", triangles, seconds);
   }
   else
   {
@@ -74,15 +76,18 @@ THINTISSUE_BENCHMARK_SUITE(ioSuite, "io", "mesh import: steak OBJ, 1M-triangle O
   }
   const double objSeconds =
     medianSeconds([&] { readTriangleMesh(base + ".obj"); }, context.quick ? 1 : 3);
-  reportThroughput(reporter, "slab obj (" + sizeLabel(slab) + ")", slab.triangleCount(), objSeconds);
+  reportThroughput(
+    reporter, "slab obj (" + sizeLabel(slab) + ")", slab.triangleCount(), objSeconds);
   const double vtpSeconds = medianSeconds(
-    [&] {
+    [&]
+    {
       vtkNew<vtkThinTissueMeshReader> reader;
       reader->SetFileName((base + ".vtp").c_str());
       reader->Update();
     },
     context.quick ? 1 : 3);
-  reportThroughput(reporter, "slab vtp (" + sizeLabel(slab) + ")", slab.triangleCount(), vtpSeconds);
+  reportThroughput(
+    reporter, "slab vtp (" + sizeLabel(slab) + ")", slab.triangleCount(), vtpSeconds);
   std::filesystem::remove(base + ".obj");
   std::filesystem::remove(base + ".vtp");
 }
@@ -93,13 +98,21 @@ THINTISSUE_BENCHMARK_SUITE(meshSuite, "mesh", "adjacency, validation and VTK con
   const int repetitions = context.quick ? 1 : 5;
   const TriangleMesh slab = largeSlab(context.quick);
   const std::string label = " (" + sizeLabel(slab) + ")";
-  reportThroughput(reporter, "adjacency" + label, slab.triangleCount(),
+  reportThroughput(reporter,
+    "adjacency" + label,
+    slab.triangleCount(),
     medianSeconds([&] { TriangleMeshAdjacency adjacency(slab); }, repetitions));
-  reportThroughput(reporter, "validation" + label, slab.triangleCount(),
+  reportThroughput(reporter,
+    "validation" + label,
+    slab.triangleCount(),
     medianSeconds([&] { validateTriangleMesh(slab); }, repetitions));
-  reportThroughput(reporter, "to vtkPolyData" + label, slab.triangleCount(),
+  reportThroughput(reporter,
+    "to vtkPolyData" + label,
+    slab.triangleCount(),
     medianSeconds([&] { toPolyData(slab); }, repetitions));
   const auto polyData = toPolyData(slab);
-  reportThroughput(reporter, "from vtkPolyData" + label, slab.triangleCount(),
+  reportThroughput(reporter,
+    "from vtkPolyData" + label,
+    slab.triangleCount(),
     medianSeconds([&] { fromPolyData(polyData, "bench"); }, repetitions));
 }

@@ -44,7 +44,8 @@ int main(int argc, char* argv[])
   }
 
   auto suites = benchmarkSuites();
-  std::sort(suites.begin(), suites.end(),
+  std::sort(suites.begin(),
+    suites.end(),
     [](const BenchmarkSuite& a, const BenchmarkSuite& b) { return a.name < b.name; });
   if (list)
   {
@@ -56,7 +57,8 @@ int main(int argc, char* argv[])
   }
   for (const std::string& name : selected)
   {
-    if (std::none_of(suites.begin(), suites.end(),
+    if (std::none_of(suites.begin(),
+          suites.end(),
           [&](const BenchmarkSuite& suite) { return suite.name == name; }))
     {
       std::cerr << "ThinTissueBench: no suite named '" << name << "' (see --list)\n";
@@ -66,7 +68,8 @@ int main(int argc, char* argv[])
   int failures = 0;
   for (const BenchmarkSuite& suite : suites)
   {
-    if (!selected.empty() && std::find(selected.begin(), selected.end(), suite.name) == selected.end())
+    if (!selected.empty() &&
+        std::find(selected.begin(), selected.end(), suite.name) == selected.end())
     {
       continue;
     }

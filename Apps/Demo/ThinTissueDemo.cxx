@@ -82,7 +82,7 @@ bool parseArguments(int argc, char* argv[], Options& options)
     else if (argument == "--size" && hasValue)
     {
       if (std::sscanf(argv[++i], "%dx%d", &options.width, &options.height) != 2 ||
-        options.width < 16 || options.height < 16)
+          options.width < 16 || options.height < 16)
       {
         std::cerr << "ThinTissueDemo: --size expects WxH, e.g. 1024x768\n";
         return false;

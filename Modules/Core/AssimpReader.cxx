@@ -54,7 +54,8 @@ FloatTripleKey makeKey(float x, float y, float z)
 TriangleMesh readWithAssimp(const std::string& path, const MeshImportOptions& options)
 {
   Assimp::Importer importer;
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(
+    AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(path,
     aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
       aiProcess_PreTransformVertices);
@@ -127,9 +128,9 @@ TriangleMesh readWithAssimp(const std::string& path, const MeshImportOptions& op
         const unsigned i = face.mIndices[k];
         if (i >= source->mNumVertices)
         {
-          throw FileError(path, "face " + std::to_string(f) + " has vertex index " +
-              std::to_string(i) + " out of range (" + std::to_string(source->mNumVertices) +
-              " vertices)");
+          throw FileError(path,
+            "face " + std::to_string(f) + " has vertex index " + std::to_string(i) +
+              " out of range (" + std::to_string(source->mNumVertices) + " vertices)");
         }
         tri[k] = vertexMap[i];
         corners[k] = allTextured ? textureMap[i] : 0;

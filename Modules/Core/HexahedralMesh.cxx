@@ -9,8 +9,8 @@ namespace thintissue
 
 std::size_t HexahedralMesh::fixedNodeCount() const
 {
-  return static_cast<std::size_t>(std::count_if(
-    fixedNodes.begin(), fixedNodes.end(), [](std::uint8_t f) { return f != 0; }));
+  return static_cast<std::size_t>(
+    std::count_if(fixedNodes.begin(), fixedNodes.end(), [](std::uint8_t f) { return f != 0; }));
 }
 
 BoundingBox HexahedralMesh::boundingBox() const
@@ -35,18 +35,28 @@ Vector3 HexahedralMesh::hexahedronCentre(std::size_t h) const
 
 std::array<int, 3> HexahedralMesh::cornerOffset(int k)
 {
-  static constexpr int offsets[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 },
-    { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } };
+  static constexpr int offsets[8][3] = { { 0, 0, 0 },
+    { 1, 0, 0 },
+    { 1, 1, 0 },
+    { 0, 1, 0 },
+    { 0, 0, 1 },
+    { 1, 0, 1 },
+    { 1, 1, 1 },
+    { 0, 1, 1 } };
   return { offsets[k][0], offsets[k][1], offsets[k][2] };
 }
 
-HexahedralMesh HexahedralMesh::makeRegularGrid(
-  const Vector3& origin, const Vector3& spacing, int nx, int ny, int nz)
+HexahedralMesh HexahedralMesh::makeRegularGrid(const Vector3& origin,
+  const Vector3& spacing,
+  int nx,
+  int ny,
+  int nz)
 {
   if (nx < 1 || ny < 1 || nz < 1)
   {
     throw InvalidInputError("regular hexahedral grid: cell counts must be at least 1, got " +
-      std::to_string(nx) + " x " + std::to_string(ny) + " x " + std::to_string(nz));
+                            std::to_string(nx) + " x " + std::to_string(ny) + " x " +
+                            std::to_string(nz));
   }
   if (!(spacing.array() > 0.0).all())
   {
@@ -106,9 +116,9 @@ void HexahedralMesh::checkConsistency() const
     {
       if (v < 0 || v >= n)
       {
-        throw InvalidInputError(context + ": hexahedron " + std::to_string(h) +
-          " has node index " + std::to_string(v) + " out of range (" + std::to_string(n) +
-          " nodes)");
+        throw InvalidInputError(context + ": hexahedron " + std::to_string(h) + " has node index " +
+                                std::to_string(v) + " out of range (" + std::to_string(n) +
+                                " nodes)");
       }
     }
     std::sort(sorted.begin(), sorted.end());
@@ -120,8 +130,8 @@ void HexahedralMesh::checkConsistency() const
   }
   if (!fixedNodes.empty() && fixedNodes.size() != nodes.size())
   {
-    throw InvalidInputError(context + ": fixed-node mask has " +
-      std::to_string(fixedNodes.size()) + " entries for " + std::to_string(n) + " nodes");
+    throw InvalidInputError(context + ": fixed-node mask has " + std::to_string(fixedNodes.size()) +
+                            " entries for " + std::to_string(n) + " nodes");
   }
   nodeAttributes.checkElementCount(nodes.size(), context);
 }

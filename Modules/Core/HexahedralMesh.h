@@ -40,8 +40,11 @@ public:
   static std::array<int, 3> cornerOffset(int k);
 
   /// A box of nx * ny * nz hexahedra from `origin` with the given spacing.
-  static HexahedralMesh makeRegularGrid(
-    const Vector3& origin, const Vector3& spacing, int nx, int ny, int nz);
+  static HexahedralMesh makeRegularGrid(const Vector3& origin,
+    const Vector3& spacing,
+    int nx,
+    int ny,
+    int nz);
 
   /// Throws InvalidInputError naming `name` on an index out of range, a
   /// repeated node in a cell, a non-finite coordinate, a mask or attribute of

@@ -14,15 +14,18 @@ namespace thintissue
 
 const std::vector<std::string>& kernelMeshFormats()
 {
-  static const std::vector<std::string> formats = { ".obj", ".stl", ".ply", ".off", ".gltf",
-    ".glb", ".fbx", ".dae", ".3ds" };
+  static const std::vector<std::string> formats = {
+    ".obj", ".stl", ".ply", ".off", ".gltf", ".glb", ".fbx", ".dae", ".3ds"
+  };
   return formats;
 }
 
 std::string lowerCaseExtension(const std::string& path)
 {
   std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
+  std::transform(extension.begin(),
+    extension.end(),
+    extension.begin(),
     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return extension;
 }
@@ -86,7 +89,8 @@ TriangleMesh readTriangleMesh(const std::string& path, const MeshImportOptions& 
     {
       supported += (supported.empty() ? "" : " ") + format;
     }
-    throw FileError(path, "unknown mesh format '" + extension + "' (supported: " + supported +
+    throw FileError(path,
+      "unknown mesh format '" + extension + "' (supported: " + supported +
         "; .vtp .vtk .vtu through vtkThinTissueMeshReader)");
   }
   TriangleMesh mesh;

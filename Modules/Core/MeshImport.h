@@ -37,8 +37,8 @@ THINTISSUECORE_EXPORT void checkReadableFile(const std::string& path);
 /// Reads a triangle mesh; polygons are triangulated. Throws FileError naming
 /// the file and the problem: missing, a directory, unknown format, malformed,
 /// empty, non-finite coordinates, indices out of range.
-THINTISSUECORE_EXPORT TriangleMesh readTriangleMesh(
-  const std::string& path, const MeshImportOptions& options = {});
+THINTISSUECORE_EXPORT TriangleMesh readTriangleMesh(const std::string& path,
+  const MeshImportOptions& options = {});
 
 /// Parses Wavefront OBJ text; `name` is used in messages and as mesh name.
 THINTISSUECORE_EXPORT TriangleMesh parseObj(const std::string& text, const std::string& name);

@@ -25,14 +25,16 @@ TriangleMesh makeSlabSurface(const SlabSurfaceParameters& p)
   const std::size_t latticeSize =
     static_cast<std::size_t>(cells[0] + 1) * (cells[1] + 1) * (cells[2] + 1);
   std::vector<int> vertexOfLattice(latticeSize, -1);
-  const auto vertexAt = [&](const std::array<int, 3>& ijk) {
+  const auto vertexAt = [&](const std::array<int, 3>& ijk)
+  {
     const std::size_t key =
       (static_cast<std::size_t>(ijk[2]) * (cells[1] + 1) + ijk[1]) * (cells[0] + 1) + ijk[0];
     int& v = vertexOfLattice[key];
     if (v < 0)
     {
       v = static_cast<int>(mesh.positions.size());
-      mesh.positions.push_back(origin +
+      mesh.positions.push_back(
+        origin +
         Vector3(double(ijk[0]) / cells[0], double(ijk[1]) / cells[1], double(ijk[2]) / cells[2])
           .cwiseProduct(size));
     }

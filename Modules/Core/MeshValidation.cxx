@@ -22,7 +22,7 @@ void record(ValidationFinding& finding, const std::string& location)
 std::string edgeLocation(const std::array<int, 2>& edge)
 {
   return "edge " + std::to_string(edge[0]) + "-" + std::to_string(edge[1]) + " (at vertex " +
-    std::to_string(edge[0]) + ")";
+         std::to_string(edge[0]) + ")";
 }
 
 /// Union-find for connected pieces.
@@ -38,8 +38,7 @@ int findRoot(std::vector<int>& parent, int x)
 
 /// Number of fans around vertex v (1 for a manifold vertex): triangles
 /// around v are grouped when they share an edge incident to v.
-int countVertexFans(const TriangleMeshAdjacency& adjacency, int v,
-  std::vector<int>& scratchParent)
+int countVertexFans(const TriangleMeshAdjacency& adjacency, int v, std::vector<int>& scratchParent)
 {
   const int* begin = adjacency.vertexTrianglesBegin(v);
   const int count = adjacency.vertexTriangleCount(v);
@@ -75,8 +74,8 @@ int countVertexFans(const TriangleMeshAdjacency& adjacency, int v,
 bool MeshValidationReport::isClosedManifold() const
 {
   return triangleCount > 0 && nonManifoldEdges.count == 0 && nonManifoldVertices.count == 0 &&
-    degenerateTriangles.count == 0 && duplicateTriangles.count == 0 &&
-    inconsistentlyOrientedEdges.count == 0 && borderEdges.count == 0;
+         degenerateTriangles.count == 0 && duplicateTriangles.count == 0 &&
+         inconsistentlyOrientedEdges.count == 0 && borderEdges.count == 0;
 }
 
 bool MeshValidationReport::isClosedOutwardSingleSurface() const
@@ -91,7 +90,8 @@ std::string MeshValidationReport::toString() const
       << " triangles, " << edgeCount << " edges, " << connectedComponents
       << (connectedComponents == 1 ? " piece" : " pieces") << ", enclosed volume " << signedVolume
       << "\n";
-  const auto line = [&out](const char* what, const ValidationFinding& finding) {
+  const auto line = [&out](const char* what, const ValidationFinding& finding)
+  {
     out << "  " << what << ": " << finding.count;
     if (finding.count > 0)
     {
@@ -145,7 +145,7 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
   {
     const Triangle& tri = mesh.triangles[t];
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] ||
-      mesh.triangleArea(t) <= minimumArea)
+        mesh.triangleArea(t) <= minimumArea)
     {
       record(report.degenerateTriangles,
         "triangle " + std::to_string(t) + " (at vertex " + std::to_string(tri[0]) + ")");
@@ -159,10 +159,13 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
     // location is the lowest-numbered duplicate.
     std::vector<int> order(mesh.triangleCount());
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return sortedTriangles[a] != sortedTriangles[b] ? sortedTriangles[a] < sortedTriangles[b]
-                                                      : a < b;
-    });
+    std::sort(order.begin(),
+      order.end(),
+      [&](int a, int b)
+      {
+        return sortedTriangles[a] != sortedTriangles[b] ? sortedTriangles[a] < sortedTriangles[b]
+                                                        : a < b;
+      });
     int firstDuplicate = -1;
     int firstOriginal = -1;
     for (std::size_t i = 1; i < order.size(); ++i)
@@ -180,8 +183,9 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
     }
     if (firstDuplicate >= 0)
     {
-      report.duplicateTriangles.firstLocation = "triangle " + std::to_string(firstDuplicate) +
-        " (same vertices as triangle " + std::to_string(firstOriginal) + ", at vertex " +
+      report.duplicateTriangles.firstLocation =
+        "triangle " + std::to_string(firstDuplicate) + " (same vertices as triangle " +
+        std::to_string(firstOriginal) + ", at vertex " +
         std::to_string(mesh.triangles[firstDuplicate][0]) + ")";
     }
   }
@@ -197,15 +201,16 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
     }
     else if (count > 2)
     {
-      record(report.nonManifoldEdges, edgeLocation(adjacency.edge(ei)) + " shared by " +
-          std::to_string(count) + " triangles");
+      record(report.nonManifoldEdges,
+        edgeLocation(adjacency.edge(ei)) + " shared by " + std::to_string(count) + " triangles");
     }
     else
     {
       // Both triangles must traverse the edge in opposite directions.
       const auto& ends = adjacency.edge(ei);
       int forward = 0;
-      for (const int* t = adjacency.edgeTrianglesBegin(ei); t != adjacency.edgeTrianglesEnd(ei); ++t)
+      for (const int* t = adjacency.edgeTrianglesBegin(ei); t != adjacency.edgeTrianglesEnd(ei);
+           ++t)
       {
         const Triangle& tri = mesh.triangles[*t];
         for (int k = 0; k < 3; ++k)

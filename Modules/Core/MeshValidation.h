@@ -56,8 +56,8 @@ struct THINTISSUECORE_EXPORT MeshValidationReport
 /// Checks `mesh` (whose indices must be in range; see
 /// TriangleMesh::checkConsistency). `degenerateAreaTolerance` is relative to
 /// the squared bounding-box diagonal.
-THINTISSUECORE_EXPORT MeshValidationReport validateTriangleMesh(
-  const TriangleMesh& mesh, double degenerateAreaTolerance = 1e-14);
+THINTISSUECORE_EXPORT MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh,
+  double degenerateAreaTolerance = 1e-14);
 
 } // namespace thintissue
 

@@ -77,8 +77,8 @@ public:
         skipSpaces();
         while (!Line.empty())
         {
-          polygon.push_back(readCorner(mesh.positions.size(), mesh.textureCoordinates.size(),
-            fileNormals.size()));
+          polygon.push_back(
+            readCorner(mesh.positions.size(), mesh.textureCoordinates.size(), fileNormals.size()));
           skipSpaces();
         }
         if (polygon.size() < 3)
@@ -173,7 +173,7 @@ private:
     const char* end = begin + Line.size();
     const auto result = std::from_chars(begin, end, value);
     if (result.ec != std::errc() ||
-      (result.ptr != end && *result.ptr != ' ' && *result.ptr != '\t'))
+        (result.ptr != end && *result.ptr != ' ' && *result.ptr != '\t'))
     {
       // from_chars rejects "nan"/"inf" spelt differently; name the token.
       const std::string_view token = nextToken();
@@ -199,7 +199,7 @@ private:
     if (index == 0 || resolved < 0 || resolved >= static_cast<long long>(count))
     {
       fail(std::string("face ") + what + " index " + std::to_string(index) + " out of range (" +
-        std::to_string(count) + " " + (count == 1 ? what : plural) + " defined so far)");
+           std::to_string(count) + " " + (count == 1 ? what : plural) + " defined so far)");
     }
     return static_cast<int>(resolved);
   }
@@ -220,8 +220,8 @@ private:
     const std::string_view token = nextToken();
     Corner corner;
     const std::size_t slash1 = token.find('/');
-    corner.position = resolveIndex(
-      readInteger(token.substr(0, slash1), "vertex"), positions, "vertex", "vertices");
+    corner.position =
+      resolveIndex(readInteger(token.substr(0, slash1), "vertex"), positions, "vertex", "vertices");
     if (slash1 != std::string_view::npos)
     {
       const std::string_view rest = token.substr(slash1 + 1);
@@ -229,14 +229,15 @@ private:
       const std::string_view texture = rest.substr(0, slash2);
       if (!texture.empty())
       {
-        corner.texture =
-          resolveIndex(readInteger(texture, "texture coordinate"), textures,
-          "texture coordinate", "texture coordinates");
+        corner.texture = resolveIndex(readInteger(texture, "texture coordinate"),
+          textures,
+          "texture coordinate",
+          "texture coordinates");
       }
       if (slash2 != std::string_view::npos && slash2 + 1 < rest.size())
       {
-        corner.normal =
-          resolveIndex(readInteger(rest.substr(slash2 + 1), "normal"), normals, "normal", "normals");
+        corner.normal = resolveIndex(
+          readInteger(rest.substr(slash2 + 1), "normal"), normals, "normal", "normals");
       }
     }
     return corner;
@@ -244,7 +245,8 @@ private:
 
   /// Vertex normals from the file's per-corner normals (averaged where a
   /// vertex has several, e.g. at hard edges); none if any corner lacks one.
-  static void assignVertexNormals(TriangleMesh& mesh, const std::vector<Vector3>& fileNormals,
+  static void assignVertexNormals(TriangleMesh& mesh,
+    const std::vector<Vector3>& fileNormals,
     const std::vector<std::array<int, 3>>& cornerNormals)
   {
     if (fileNormals.empty())

@@ -20,8 +20,9 @@ BoundingBox TriangleMesh::boundingBox() const
 double TriangleMesh::triangleArea(std::size_t t) const
 {
   const Triangle& tri = triangles[t];
-  return 0.5 *
-    (positions[tri[1]] - positions[tri[0]]).cross(positions[tri[2]] - positions[tri[0]]).norm();
+  return 0.5 * (positions[tri[1]] - positions[tri[0]])
+                 .cross(positions[tri[2]] - positions[tri[0]])
+                 .norm();
 }
 
 Vector3 TriangleMesh::triangleNormal(std::size_t t) const
@@ -113,20 +114,21 @@ void TriangleMesh::checkConsistency() const
       if (v < 0 || v >= n)
       {
         throw InvalidInputError(context + ": triangle " + std::to_string(t) + " has vertex index " +
-          std::to_string(v) + " out of range (" + std::to_string(n) + " vertices)");
+                                std::to_string(v) + " out of range (" + std::to_string(n) +
+                                " vertices)");
       }
     }
   }
   if (!normals.empty() && normals.size() != positions.size())
   {
     throw InvalidInputError(context + ": " + std::to_string(normals.size()) + " normals for " +
-      std::to_string(positions.size()) + " vertices");
+                            std::to_string(positions.size()) + " vertices");
   }
   if (!textureCorners.empty() && textureCorners.size() != triangles.size())
   {
     throw InvalidInputError(context + ": texture corners for " +
-      std::to_string(textureCorners.size()) + " triangles, mesh has " +
-      std::to_string(triangles.size()));
+                            std::to_string(textureCorners.size()) + " triangles, mesh has " +
+                            std::to_string(triangles.size()));
   }
   const long long nt = static_cast<long long>(textureCoordinates.size());
   for (std::size_t t = 0; t < textureCorners.size(); ++t)
@@ -136,8 +138,8 @@ void TriangleMesh::checkConsistency() const
       if (c < 0 || c >= nt)
       {
         throw InvalidInputError(context + ": triangle " + std::to_string(t) +
-          " has texture coordinate index " + std::to_string(c) + " out of range (" +
-          std::to_string(nt) + " texture coordinates)");
+                                " has texture coordinate index " + std::to_string(c) +
+                                " out of range (" + std::to_string(nt) + " texture coordinates)");
       }
     }
   }
@@ -148,8 +150,8 @@ void TriangleMesh::append(const TriangleMesh& other)
 {
   const int vertexOffset = static_cast<int>(positions.size());
   const int textureOffset = static_cast<int>(textureCoordinates.size());
-  const bool keepTexture = (hasTextureCoordinates() || triangles.empty()) &&
-    other.hasTextureCoordinates();
+  const bool keepTexture =
+    (hasTextureCoordinates() || triangles.empty()) && other.hasTextureCoordinates();
   const bool keepNormals = (hasNormals() || positions.empty()) && other.hasNormals();
   positions.insert(positions.end(), other.positions.begin(), other.positions.end());
   for (const Triangle& tri : other.triangles)
@@ -183,8 +185,8 @@ void TriangleMesh::append(const TriangleMesh& other)
   for (const std::string& attributeName : pointAttributes.names())
   {
     if (!other.pointAttributes.has(attributeName) ||
-      other.pointAttributes.get(attributeName).components !=
-        pointAttributes.get(attributeName).components)
+        other.pointAttributes.get(attributeName).components !=
+          pointAttributes.get(attributeName).components)
     {
       pointAttributes.remove(attributeName);
       continue;

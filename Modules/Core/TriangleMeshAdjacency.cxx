@@ -11,8 +11,8 @@ TriangleMeshAdjacency::TriangleMeshAdjacency(const TriangleMesh& mesh)
 {
 }
 
-TriangleMeshAdjacency::TriangleMeshAdjacency(
-  std::size_t vertexCount, const std::vector<Triangle>& triangles)
+TriangleMeshAdjacency::TriangleMeshAdjacency(std::size_t vertexCount,
+  const std::vector<Triangle>& triangles)
 {
   const int triangleCount = static_cast<int>(triangles.size());
 
@@ -60,9 +60,10 @@ TriangleMeshAdjacency::TriangleMeshAdjacency(
       keys.push_back({ key, t, k });
     }
   }
-  std::sort(keys.begin(), keys.end(), [](const HalfEdgeKey& x, const HalfEdgeKey& y) {
-    return x.vertices != y.vertices ? x.vertices < y.vertices : x.triangle < y.triangle;
-  });
+  std::sort(keys.begin(),
+    keys.end(),
+    [](const HalfEdgeKey& x, const HalfEdgeKey& y)
+    { return x.vertices != y.vertices ? x.vertices < y.vertices : x.triangle < y.triangle; });
   TriangleEdges.assign(triangles.size(), { -1, -1, -1 });
   EdgeTriangles.resize(keys.size());
   EdgeTriangleOffsets.clear();

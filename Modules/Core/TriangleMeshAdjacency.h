@@ -30,12 +30,27 @@ public:
   /// Number of triangles using edge e: 1 on a border, 2 inside a manifold,
   /// more on a non-manifold edge.
   int edgeTriangleCount(int e) const { return EdgeTriangleOffsets[e + 1] - EdgeTriangleOffsets[e]; }
-  const int* edgeTrianglesBegin(int e) const { return EdgeTriangles.data() + EdgeTriangleOffsets[e]; }
-  const int* edgeTrianglesEnd(int e) const { return EdgeTriangles.data() + EdgeTriangleOffsets[e + 1]; }
+  const int* edgeTrianglesBegin(int e) const
+  {
+    return EdgeTriangles.data() + EdgeTriangleOffsets[e];
+  }
+  const int* edgeTrianglesEnd(int e) const
+  {
+    return EdgeTriangles.data() + EdgeTriangleOffsets[e + 1];
+  }
 
-  int vertexTriangleCount(int v) const { return VertexTriangleOffsets[v + 1] - VertexTriangleOffsets[v]; }
-  const int* vertexTrianglesBegin(int v) const { return VertexTriangles.data() + VertexTriangleOffsets[v]; }
-  const int* vertexTrianglesEnd(int v) const { return VertexTriangles.data() + VertexTriangleOffsets[v + 1]; }
+  int vertexTriangleCount(int v) const
+  {
+    return VertexTriangleOffsets[v + 1] - VertexTriangleOffsets[v];
+  }
+  const int* vertexTrianglesBegin(int v) const
+  {
+    return VertexTriangles.data() + VertexTriangleOffsets[v];
+  }
+  const int* vertexTrianglesEnd(int v) const
+  {
+    return VertexTriangles.data() + VertexTriangleOffsets[v + 1];
+  }
 
   /// The triangle across edge k of triangle t, or -1 on a border or
   /// non-manifold edge.

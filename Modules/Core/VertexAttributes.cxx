@@ -10,7 +10,8 @@ void VertexAttributes::set(const std::string& name, int components, std::vector<
   if (components < 1 || values.size() % static_cast<std::size_t>(components) != 0)
   {
     throw InvalidInputError("attribute '" + name + "': " + std::to_string(values.size()) +
-      " values do not form elements of " + std::to_string(components) + " components");
+                            " values do not form elements of " + std::to_string(components) +
+                            " components");
   }
   AttributeArray& array = Arrays[name];
   array.components = components;
@@ -61,8 +62,8 @@ void VertexAttributes::checkElementCount(std::size_t elementCount, const std::st
     if (array.elementCount() != elementCount || array.values.size() % array.components != 0)
     {
       throw InvalidInputError(context + ": attribute '" + name + "' has " +
-        std::to_string(array.elementCount()) + " elements, expected " +
-        std::to_string(elementCount));
+                              std::to_string(array.elementCount()) + " elements, expected " +
+                              std::to_string(elementCount));
     }
   }
 }

@@ -15,8 +15,9 @@ vtkThinSlabSource::vtkThinSlabSource()
   this->SetNumberOfInputPorts(0);
 }
 
-int vtkThinSlabSource::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkThinSlabSource::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   try

@@ -69,7 +69,8 @@ void addAttributeArrays(const VertexAttributes& attributes, vtkPointData* pointD
 }
 
 /// Every numeric point array not in `skip` becomes an attribute.
-void readAttributeArrays(vtkPointData* pointData, std::initializer_list<const char*> skip,
+void readAttributeArrays(vtkPointData* pointData,
+  std::initializer_list<const char*> skip,
   VertexAttributes& attributes)
 {
   for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
@@ -245,7 +246,7 @@ TriangleMesh fromPolyData(vtkPolyData* polyData, const std::string& name)
   vtkDataArray* corners = polyData->GetCellData()->GetArray(CornerTextureCoordinatesArrayName);
   vtkDataArray* tcoords = pointData->GetTCoords();
   if (corners != nullptr && corners->GetNumberOfComponents() == 6 && allTriangles &&
-    polyData->GetNumberOfVerts() + polyData->GetNumberOfLines() == 0)
+      polyData->GetNumberOfVerts() + polyData->GetNumberOfLines() == 0)
   {
     // Per-corner data: rebuild the list of distinct coordinates.
     std::map<std::pair<double, double>, int> distinct;
@@ -292,8 +293,8 @@ vtkSmartPointer<vtkUnstructuredGrid> toUnstructuredGrid(const HexahedralMesh& me
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   grid->SetPoints(makePoints(mesh.nodes));
   grid->SetCells(VTK_HEXAHEDRON,
-    makeCells(mesh.hexahedra.empty() ? nullptr : mesh.hexahedra.data()->data(),
-      mesh.hexahedra.size(), 8));
+    makeCells(
+      mesh.hexahedra.empty() ? nullptr : mesh.hexahedra.data()->data(), mesh.hexahedra.size(), 8));
   if (!mesh.fixedNodes.empty())
   {
     vtkNew<vtkUnsignedCharArray> fixed;
@@ -325,7 +326,8 @@ HexahedralMesh fromUnstructuredGrid(vtkDataSet* grid, const std::string& name)
     if (grid->GetCellType(c) != VTK_HEXAHEDRON)
     {
       throw InvalidInputError("hexahedral mesh '" + name + "': cell " + std::to_string(c) +
-        " is of VTK type " + std::to_string(grid->GetCellType(c)) + ", not a hexahedron (12)");
+                              " is of VTK type " + std::to_string(grid->GetCellType(c)) +
+                              ", not a hexahedron (12)");
     }
     grid->GetCellPoints(c, ids);
     Hexahedron hex;

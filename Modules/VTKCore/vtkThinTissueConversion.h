@@ -41,8 +41,8 @@ THINTISSUEVTKCORE_EXPORT vtkSmartPointer<vtkUnstructuredGrid> toUnstructuredGrid
 
 /// Unstructured grid (or any data set) of hexahedra -> hexahedral mesh.
 /// Throws InvalidInputError naming `name` if a cell is not a hexahedron.
-THINTISSUEVTKCORE_EXPORT HexahedralMesh fromUnstructuredGrid(
-  vtkDataSet* grid, const std::string& name);
+THINTISSUEVTKCORE_EXPORT HexahedralMesh fromUnstructuredGrid(vtkDataSet* grid,
+  const std::string& name);
 
 } // namespace thintissue
 

@@ -112,11 +112,12 @@ bool vtkThinTissueMeshReader::CanReadFileExtension(const char* fileName)
   const std::string extension = thintissue::lowerCaseExtension(fileName);
   const auto& kernel = thintissue::kernelMeshFormats();
   return std::find(kernel.begin(), kernel.end(), extension) != kernel.end() ||
-    std::find(std::begin(VTKFormats), std::end(VTKFormats), extension) != std::end(VTKFormats);
+         std::find(std::begin(VTKFormats), std::end(VTKFormats), extension) != std::end(VTKFormats);
 }
 
-int vtkThinTissueMeshReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkThinTissueMeshReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->LastErrorMessage.clear();
@@ -155,7 +156,10 @@ int vtkThinTissueMeshReader::RequestData(
     }
     this->UpdateProgress(0.8);
     output->ShallowCopy(thintissue::toPolyData(mesh));
-    vtkLogF(TRACE, "read '%s': %zu vertices, %zu triangles", path.c_str(), mesh.vertexCount(),
+    vtkLogF(TRACE,
+      "read '%s': %zu vertices, %zu triangles",
+      path.c_str(),
+      mesh.vertexCount(),
       mesh.triangleCount());
     this->UpdateProgress(1.0);
     return 1;

@@ -10,8 +10,9 @@
 
 vtkStandardNewMacro(vtkTriangleMeshValidationFilter);
 
-int vtkTriangleMeshValidationFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkTriangleMeshValidationFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);

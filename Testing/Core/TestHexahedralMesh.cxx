@@ -34,8 +34,8 @@ TEST(HexahedralMesh, ConsistencyErrors)
   grid = HexahedralMesh::makeRegularGrid(Vector3::Zero(), Vector3::Ones(), 1, 1, 1);
   grid.fixedNodes.resize(3);
   EXPECT_THROW(grid.checkConsistency(), InvalidInputError);
-  EXPECT_THROW(HexahedralMesh::makeRegularGrid(Vector3::Zero(), Vector3::Ones(), 0, 1, 1),
-    InvalidInputError);
+  EXPECT_THROW(
+    HexahedralMesh::makeRegularGrid(Vector3::Zero(), Vector3::Ones(), 0, 1, 1), InvalidInputError);
   EXPECT_THROW(HexahedralMesh::makeRegularGrid(Vector3::Zero(), Vector3(1, -1, 1), 1, 1, 1),
     InvalidInputError);
 }

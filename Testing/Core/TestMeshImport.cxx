@@ -162,9 +162,9 @@ TEST(MeshImport, PlyOffAndGltfThroughAssimp)
                           "3 0 3 2\n3 1 2 3\n";
   const std::string gltf =
     R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}], "buffers": [{"byteLength": 72, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAACAAEAAAABAAMAAAADAAIAAQACAAMA"}], "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]}, {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}]})";
-  for (const auto& [name, text] :
-    { std::pair<std::string, std::string>{ "tetra.ply", ply }, { "tetra.off", off },
-      { "tetra.gltf", gltf } })
+  for (const auto& [name, text] : { std::pair<std::string, std::string>{ "tetra.ply", ply },
+         { "tetra.off", off },
+         { "tetra.gltf", gltf } })
   {
     const TriangleMesh tetra = readTriangleMesh(writeTemporaryFile(name, text));
     EXPECT_EQ(tetra.vertexCount(), 4u) << name;
@@ -181,8 +181,8 @@ TEST(MeshImport, BadInputGetsClearErrors)
   expectFileError((directory / "a-folder.obj").string(), "is a directory");
   expectFileError(writeTemporaryFile("mesh.xyz", "1 2 3\n"), "unknown mesh format '.xyz'");
   expectFileError(writeTemporaryFile("empty.obj", ""), "contains no triangles");
-  expectFileError(writeTemporaryFile("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"),
-    "contains no triangles");
+  expectFileError(
+    writeTemporaryFile("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"), "contains no triangles");
   expectFileError(writeTemporaryFile("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
     "line 2: non-finite coordinate");
   expectFileError(writeTemporaryFile("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"),
@@ -194,8 +194,8 @@ TEST(MeshImport, BadInputGetsClearErrors)
   expectFileError(writeTemporaryFile("garbage.obj", "v 0 zero 0\n"), "line 1: expected a number");
   expectFileError(writeTemporaryFile("twocorners.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n"),
     "line 3: face with 2 vertices");
-  expectFileError(writeTemporaryFile("garbage.stl", "this is not an STL file at all\n"),
-    "cannot be parsed");
+  expectFileError(
+    writeTemporaryFile("garbage.stl", "this is not an STL file at all\n"), "cannot be parsed");
   expectFileError(writeTemporaryFile("empty.ply", ""), "cannot be parsed");
 }
 

@@ -20,8 +20,9 @@ TriangleMesh smallSlab()
 TriangleMesh tetrahedron(const Vector3& offset)
 {
   TriangleMesh mesh;
-  mesh.positions = { offset, offset + Vector3(1, 0, 0), offset + Vector3(0, 1, 0),
-    offset + Vector3(0, 0, 1) };
+  mesh.positions = {
+    offset, offset + Vector3(1, 0, 0), offset + Vector3(0, 1, 0), offset + Vector3(0, 0, 1)
+  };
   mesh.triangles = { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } };
   return mesh;
 }
@@ -61,8 +62,9 @@ TEST(MeshValidation, DuplicateTriangleMakesNonManifoldEdges)
   slab.triangles.push_back(slab.triangles[7]);
   const MeshValidationReport report = validateTriangleMesh(slab);
   EXPECT_EQ(report.duplicateTriangles.count, 1u);
-  EXPECT_NE(report.duplicateTriangles.firstLocation.find("triangle " +
-              std::to_string(slab.triangleCount() - 1) + " (same vertices as triangle 7"),
+  EXPECT_NE(
+    report.duplicateTriangles.firstLocation.find(
+      "triangle " + std::to_string(slab.triangleCount() - 1) + " (same vertices as triangle 7"),
     std::string::npos)
     << report.duplicateTriangles.firstLocation;
   EXPECT_EQ(report.nonManifoldEdges.count, 3u);
@@ -82,8 +84,8 @@ TEST(MeshValidation, FlippedTriangleIsInconsistentlyOriented)
 TEST(MeshValidation, DegenerateTriangles)
 {
   TriangleMesh mesh = tetrahedron(Vector3::Zero());
-  mesh.triangles.push_back({ 0, 0, 1 });                    // repeated vertex
-  mesh.positions.push_back(Vector3(0.5, 0.0, 0.0));         // collinear
+  mesh.triangles.push_back({ 0, 0, 1 });            // repeated vertex
+  mesh.positions.push_back(Vector3(0.5, 0.0, 0.0)); // collinear
   mesh.triangles.push_back({ 0, 1, 4 });
   const MeshValidationReport report = validateTriangleMesh(mesh);
   EXPECT_EQ(report.degenerateTriangles.count, 2u);

@@ -79,7 +79,8 @@ TEST(TriangleMesh, CheckConsistencyNamesTheProblem)
   }
   catch (const InvalidInputError& error)
   {
-    EXPECT_NE(std::string(error.what()).find("mesh 'probe': triangle 0 has vertex index 3 out of range"),
+    EXPECT_NE(
+      std::string(error.what()).find("mesh 'probe': triangle 0 has vertex index 3 out of range"),
       std::string::npos)
       << error.what();
   }

@@ -15,7 +15,7 @@ TEST(TriangleMeshAdjacency, ClosedSurfaceHasTwoTrianglesPerEdge)
   EXPECT_EQ(adjacency.edgeCount(), 3 * slab.triangleCount() / 2);
   // Euler characteristic of a sphere-like surface.
   EXPECT_EQ(static_cast<long>(slab.vertexCount()) - static_cast<long>(adjacency.edgeCount()) +
-      static_cast<long>(slab.triangleCount()),
+              static_cast<long>(slab.triangleCount()),
     2);
   for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
   {

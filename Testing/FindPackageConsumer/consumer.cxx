@@ -14,7 +14,8 @@ int main()
   const thintissue::MeshValidationReport report = thintissue::validateTriangleMesh(slab);
   vtkNew<vtkThinSlabSource> source;
   source->Update();
-  const bool ok = report.isClosedOutwardSingleSurface() &&
+  const bool ok =
+    report.isClosedOutwardSingleSurface() &&
     source->GetOutput()->GetNumberOfPolys() == static_cast<vtkIdType>(slab.triangleCount());
   std::cout << "consumer: " << slab.triangleCount() << " triangles, "
             << (ok ? "package works" : "MISMATCH") << "\n";

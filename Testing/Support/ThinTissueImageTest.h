@@ -30,7 +30,8 @@ inline int compareWithBaseline(int argc, char* argv[], vtkRenderWindow* window)
     arguments.push_back(argv[i]);
   }
   window->Render();
-  const int result = vtkTesting::Test(static_cast<int>(arguments.size()), arguments.data(), window, threshold);
+  const int result =
+    vtkTesting::Test(static_cast<int>(arguments.size()), arguments.data(), window, threshold);
   return result == vtkTesting::PASSED ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 

@@ -41,8 +41,8 @@ inline std::filesystem::path temporaryDirectory()
 {
   const std::string directory =
     settingOrDefault("THINTISSUE_TEST_TEMPORARY", THINTISSUE_TEST_TEMPORARY_DEFAULT);
-  std::filesystem::path path = !directory.empty() ? std::filesystem::path(directory)
-                                                  : std::filesystem::temp_directory_path();
+  std::filesystem::path path =
+    !directory.empty() ? std::filesystem::path(directory) : std::filesystem::temp_directory_path();
   path /= "thintissue-tests";
   std::filesystem::create_directories(path);
   return path;

@@ -54,8 +54,9 @@ TEST(Conversion, SeamsLiveInTheCornerArrayOnly)
   quad.positions = { Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(1, 1, 0), Vector3(0, 1, 0) };
   quad.triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
   // Vertex 0 and 2 get different coordinates in the two triangles: a seam.
-  quad.textureCoordinates = { Vector2(0, 0), Vector2(1, 0), Vector2(1, 1), Vector2(0.5, 0.5),
-    Vector2(0.9, 0.9), Vector2(0, 1) };
+  quad.textureCoordinates = {
+    Vector2(0, 0), Vector2(1, 0), Vector2(1, 1), Vector2(0.5, 0.5), Vector2(0.9, 0.9), Vector2(0, 1)
+  };
   quad.textureCorners = { { 0, 1, 2 }, { 3, 4, 5 } };
   const auto polyData = toPolyData(quad);
   EXPECT_EQ(polyData->GetPointData()->GetTCoords(), nullptr);

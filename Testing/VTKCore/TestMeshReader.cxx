@@ -5,16 +5,16 @@
 #include "vtkThinTissueMeshReader.h"
 #include "vtkTriangleMeshValidationFilter.h"
 
+#include <vtkAppendFilter.h>
 #include <vtkCellData.h>
 #include <vtkDataSetWriter.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
-#include <vtkUnstructuredGrid.h>
-#include <vtkAppendFilter.h>
 
 #include <gtest/gtest.h>
 
@@ -115,8 +115,8 @@ TEST(MeshReader, BadInputGetsClearErrorsAndEmptyOutput)
   const std::string missing = (directory / "missing.vtp").string();
   EXPECT_EQ(readError(missing), "mesh file '" + missing + "': no such file");
   std::filesystem::create_directories(directory / "folder.vtp");
-  EXPECT_NE(readError((directory / "folder.vtp").string()).find("is a directory"),
-    std::string::npos);
+  EXPECT_NE(
+    readError((directory / "folder.vtp").string()).find("is a directory"), std::string::npos);
   const std::string unknown = writeTemporaryFile("mesh.abc", "abc");
   EXPECT_NE(readError(unknown).find("unknown mesh format '.abc'"), std::string::npos);
   const std::string garbage = writeTemporaryFile("garbage.vtp", "<VTKFile> not really");
@@ -165,6 +165,6 @@ TEST(ValidationFilter, ReportsAnOpenSurface)
   EXPECT_EQ(validation->GetNumberOfConnectedComponents(), 1);
   EXPECT_NE(std::string(validation->GetReport()).find("open border edges: 3, first at edge"),
     std::string::npos);
-  EXPECT_EQ(validation->GetOutput()->GetNumberOfPolys(),
-    static_cast<vtkIdType>(open.triangleCount()));
+  EXPECT_EQ(
+    validation->GetOutput()->GetNumberOfPolys(), static_cast<vtkIdType>(open.triangleCount()));
 }
