@@ -15,12 +15,7 @@ std::size_t HexahedralMesh::fixedNodeCount() const
 
 BoundingBox HexahedralMesh::boundingBox() const
 {
-  BoundingBox box;
-  for (const Vector3& p : nodes)
-  {
-    box.extend(p);
-  }
-  return box;
+  return boundingBoxOf(nodes);
 }
 
 Vector3 HexahedralMesh::hexahedronCentre(std::size_t h) const

@@ -7,14 +7,19 @@
 namespace thintissue
 {
 
-BoundingBox TriangleMesh::boundingBox() const
+BoundingBox boundingBoxOf(const std::vector<Vector3>& points)
 {
   BoundingBox box;
-  for (const Vector3& p : positions)
+  for (const Vector3& p : points)
   {
     box.extend(p);
   }
   return box;
+}
+
+BoundingBox TriangleMesh::boundingBox() const
+{
+  return boundingBoxOf(positions);
 }
 
 double TriangleMesh::triangleArea(std::size_t t) const

@@ -25,6 +25,9 @@ using Vector3 = Eigen::Vector3d;
 using Triangle = std::array<int, 3>;
 using BoundingBox = Eigen::AlignedBox3d;
 
+/// Axis-aligned box of a point set (empty for no points).
+THINTISSUECORE_EXPORT BoundingBox boundingBoxOf(const std::vector<Vector3>& points);
+
 /// Indexed triangle surface with optional normals, texture coordinates and
 /// named per-vertex attributes. Plain data with documented invariants;
 /// `checkConsistency` verifies them.

@@ -27,3 +27,15 @@ message("${step_output}")
 if(NOT step_output MATCHES "package works")
   message(FATAL_ERROR "consumer did not confirm the package")
 endif()
+
+# The installed Python package imports and works from the prefix.
+if(PYTHON_EXECUTABLE AND PYTHON_DESTINATION)
+  run_step("python" "${CMAKE_COMMAND}" -E env "PYTHONPATH=${prefix}/${PYTHON_DESTINATION}"
+    "${PYTHON_EXECUTABLE}" -c
+    # No semicolons: they would split the CMake argument list.
+    "import thintissue\ns = thintissue.vtkThinSlabSource()\ns.Update()\nprint('python package works', s.GetOutput().GetNumberOfPolys())")
+  message("${step_output}")
+  if(NOT step_output MATCHES "python package works")
+    message(FATAL_ERROR "installed Python package did not work")
+  endif()
+endif()

@@ -4,13 +4,8 @@
 #include "vtkThinSlabSource.h"
 #include "vtkTriangleMeshValidationFilter.h"
 
-#include <vtkActor.h>
-#include <vtkCamera.h>
 #include <vtkNew.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkProperty.h>
 #include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
 
 #include <iostream>
 
@@ -32,23 +27,8 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
 
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(validation->GetOutputPort());
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(0.93, 0.62, 0.58);
-  actor->GetProperty()->EdgeVisibilityOn();
-  actor->GetProperty()->SetEdgeColor(0.45, 0.22, 0.20);
-
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddActor(actor);
-  renderer->SetBackground(0.12, 0.14, 0.18);
-  renderer->GetActiveCamera()->Elevation(-55.0);
-  renderer->GetActiveCamera()->Azimuth(25.0);
-  renderer->ResetCamera();
-  vtkNew<vtkRenderWindow> window;
-  window->SetSize(400, 300);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
+  const auto actor = thintissue::testing::makeSurfaceActor(
+    validation->GetOutputPort(), { 0.93, 0.62, 0.58 }, { 0.45, 0.22, 0.20 });
+  const auto window = thintissue::testing::makeBaselineWindow(actor, -55.0, 25.0);
   return thintissue::testing::compareWithBaseline(argc, argv, window);
 }

@@ -4,15 +4,10 @@
 #include "ThinTissueTestSupport.h"
 #include "vtkThinTissueMeshReader.h"
 
-#include <vtkActor.h>
-#include <vtkCamera.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper.h>
 #include <vtkPolyDataNormals.h>
-#include <vtkProperty.h>
 #include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
 
 #include <filesystem>
 #include <iostream>
@@ -38,22 +33,8 @@ int main(int argc, char* argv[])
   vtkNew<vtkPolyDataNormals> normals;
   normals->SetInputConnection(reader->GetOutputPort());
   normals->SplittingOff();
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(normals->GetOutputPort());
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(0.72, 0.25, 0.22);
-  actor->GetProperty()->EdgeVisibilityOn();
-  actor->GetProperty()->SetEdgeColor(0.40, 0.12, 0.10);
-
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddActor(actor);
-  renderer->SetBackground(0.12, 0.14, 0.18);
-  renderer->GetActiveCamera()->Elevation(-50.0);
-  renderer->ResetCamera();
-  vtkNew<vtkRenderWindow> window;
-  window->SetSize(400, 300);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
+  const auto actor = thintissue::testing::makeSurfaceActor(
+    normals->GetOutputPort(), { 0.72, 0.25, 0.22 }, { 0.40, 0.12, 0.10 });
+  const auto window = thintissue::testing::makeBaselineWindow(actor, -50.0, 0.0);
   return thintissue::testing::compareWithBaseline(argc, argv, window);
 }
