@@ -20,7 +20,8 @@ void BenchmarkReporter::report(const std::string& caseName,
   const std::string& unit,
   std::optional<double> thesis)
 {
-  nlohmann::json line = { { "suite", Suite },
+  // ordered_json keeps the documented field order.
+  nlohmann::ordered_json line = { { "suite", Suite },
     { "case", caseName },
     { "metric", metric },
     { "value", value },
