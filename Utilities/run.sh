@@ -5,8 +5,8 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 cd "$THINTISSUE_BUILD"
+# Without a display the demo re-runs itself under xvfb-run, offscreen.
 if [ -z "${DISPLAY:-}" ]; then
-  exec xvfb-run -a -s "-screen 0 1280x1024x24" "$THINTISSUE_BUILD/bin/ThinTissueDemo" \
-    --offscreen --screenshot "$THINTISSUE_BUILD/thintissue-demo.png" "$@"
+  exec "$THINTISSUE_BUILD/bin/ThinTissueDemo" --screenshot "$THINTISSUE_BUILD/thintissue-demo.png" "$@"
 fi
 exec "$THINTISSUE_BUILD/bin/ThinTissueDemo" "$@"

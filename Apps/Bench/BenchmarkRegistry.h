@@ -38,12 +38,10 @@ public:
     std::optional<double> thesis = std::nullopt);
   /// A case that could not run (e.g. missing optional data), on stderr.
   void skip(const std::string& caseName, const std::string& reason);
-  int reportCount() const { return Count; }
 
 private:
   std::ostream& Out;
   std::string Suite;
-  int Count = 0;
 };
 
 using BenchmarkSuiteFunction = std::function<void(const BenchmarkContext&, BenchmarkReporter&)>;

@@ -23,6 +23,8 @@
 #include <vtkTextProperty.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -280,11 +282,13 @@ int main(int argc, char* argv[])
   }
   if (!options.timings.empty())
   {
-    std::ofstream json(options.timings);
-    json << "{\"mesh\": \"" << meshLabel << "\", \"vertices\": " << surface->GetNumberOfPoints()
-         << ", \"triangles\": " << surface->GetNumberOfPolys()
-         << ", \"load_ms\": " << loadMilliseconds << ", \"validate_ms\": " << validateMilliseconds
-         << ", \"first_frame_ms\": " << firstFrameMilliseconds << "}\n";
+    const nlohmann::ordered_json timings = { { "mesh", meshLabel },
+      { "vertices", surface->GetNumberOfPoints() },
+      { "triangles", surface->GetNumberOfPolys() },
+      { "load_ms", loadMilliseconds },
+      { "validate_ms", validateMilliseconds },
+      { "first_frame_ms", firstFrameMilliseconds } };
+    std::ofstream(options.timings) << timings.dump(2) << "\n";
     std::cout << "timings written to " << options.timings << "\n";
   }
   if (!options.offscreen)
