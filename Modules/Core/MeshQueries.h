@@ -1,0 +1,37 @@
+// Geometric queries on triangle surfaces (brute force, exact enough for
+// set-up, validation and tests; the real-time paths use their own BVHs).
+#ifndef MeshQueries_h
+#define MeshQueries_h
+
+#include "ThinTissueCoreModule.h"
+#include "TriangleMesh.h"
+
+#include <vector>
+
+namespace thintissue
+{
+
+/// Generalised winding number of `point` with respect to the surface: 1
+/// inside a closed outward surface, 0 outside, 1/2 on it (sum of signed
+/// solid angles, Van Oosterom and Strackee).
+THINTISSUECORE_EXPORT double windingNumber(const TriangleMesh& mesh, const Vector3& point);
+
+/// Closest point to `point` on triangle (a, b, c).
+THINTISSUECORE_EXPORT Vector3 closestPointOnTriangle(const Vector3& point,
+  const Vector3& a,
+  const Vector3& b,
+  const Vector3& c);
+
+/// Distance from `point` to the surface (0 for an empty mesh is not
+/// meaningful: returns +infinity).
+THINTISSUECORE_EXPORT double distanceToSurface(const TriangleMesh& mesh, const Vector3& point);
+
+/// Parameters t >= 0 at which origin + t * direction meets the surface
+/// (triangle edges included), sorted increasing.
+THINTISSUECORE_EXPORT std::vector<double> rayHits(const TriangleMesh& mesh,
+  const Vector3& origin,
+  const Vector3& direction);
+
+} // namespace thintissue
+
+#endif
