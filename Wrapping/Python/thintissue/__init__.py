@@ -6,3 +6,4 @@ Use next to VTK:  import vtk; import thintissue; thintissue.vtkThinSlabSource()
 from vtkmodules import vtkCommonCore, vtkCommonDataModel, vtkCommonExecutionModel  # noqa: F401
 
 from .ThinTissueVTKCore import *  # noqa: F401,F403
+from .ThinTissueVTKModels import *  # noqa: F401,F403
