@@ -204,7 +204,8 @@ THINTISSUEMODELS_EXPORT SurgicalInstrumentModel makeSurgicalInstrument(SurgicalI
 /// The model moved rigidly by `pose` (tool frame -> world): visual positions
 /// and normals, centre line, tip, edges, outline and frame.
 THINTISSUEMODELS_EXPORT SurgicalInstrumentModel transformedInstrument(
-  const SurgicalInstrumentModel& model, const Eigen::Isometry3d& pose);
+  const SurgicalInstrumentModel& model,
+  const Eigen::Isometry3d& pose);
 
 /// A 4 mm arthroscope with angled (forward-oblique) optics. The image is
 /// fixed to the camera head: `imageUp` is shown at the top of the monitor.

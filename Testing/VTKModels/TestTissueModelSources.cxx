@@ -1,5 +1,6 @@
 // VTK sources of the procedural tissues: ports, arrays, multiblock, errors.
 #include "vtkMeniscusSource.h"
+#include "vtkSurgicalInstrumentSource.h"
 #include "vtkThinSheetSource.h"
 
 #include "ThinTissueTestSupport.h"
@@ -152,4 +153,40 @@ TEST(vtkMeniscusSource, WritesAndReadsBackAsVtp)
   reader->Update();
   EXPECT_EQ(
     reader->GetOutput()->GetNumberOfPolys(), meniscus->GetVisualOutput()->GetNumberOfPolys());
+}
+
+TEST(vtkSurgicalInstrumentSource, OutputsVisualCentreLineAndWorkingFeatures)
+{
+  vtkNew<vtkSurgicalInstrumentSource> instrument;
+  for (int type = vtkSurgicalInstrumentSource::ProbeHook;
+       type <= vtkSurgicalInstrumentSource::Scalpel;
+       ++type)
+  {
+    instrument->SetInstrumentType(type);
+    instrument->Update();
+    vtkPolyData* visual = instrument->GetOutput(vtkSurgicalInstrumentSource::VisualPort);
+    EXPECT_GT(visual->GetNumberOfPolys(), 500) << type;
+    EXPECT_NE(visual->GetPointData()->GetArray("InstrumentPart"), nullptr);
+    vtkPolyData* collision = instrument->GetOutput(vtkSurgicalInstrumentSource::CollisionPort);
+    EXPECT_GE(collision->GetNumberOfLines(), 1) << type;
+    vtkDataArray* radius = collision->GetCellData()->GetArray("Radius");
+    ASSERT_NE(radius, nullptr);
+    EXPECT_GT(radius->GetRange()[0], 0.0);
+    vtkPolyData* features = instrument->GetOutput(vtkSurgicalInstrumentSource::WorkingFeaturesPort);
+    EXPECT_EQ(features->GetNumberOfVerts(), 1);
+    // The tip is the tool frame's origin.
+    double tip[3];
+    features->GetPoint(0, tip);
+    EXPECT_NEAR(tip[0] * tip[0] + tip[1] * tip[1] + tip[2] * tip[2], 0.0, 1e-12);
+    const bool hasEdgeOrOutline = type != vtkSurgicalInstrumentSource::ProbeHook;
+    EXPECT_EQ(features->GetNumberOfLines() > 0, hasEdgeOrOutline) << type;
+  }
+  instrument->SetInstrumentTypeByName("Large Shaver");
+  EXPECT_EQ(instrument->GetInstrumentType(), vtkSurgicalInstrumentSource::LargeShaver);
+  vtkNew<ErrorCounter> errors;
+  instrument->AddObserver(vtkCommand::ErrorEvent, errors);
+  instrument->SetInstrumentTypeByName("chainsaw");
+  EXPECT_EQ(errors->count, 1);
+  EXPECT_NE(errors->all.find("probe_hook"), std::string::npos) << errors->all;
+  EXPECT_EQ(instrument->GetInstrumentType(), vtkSurgicalInstrumentSource::LargeShaver);
 }
