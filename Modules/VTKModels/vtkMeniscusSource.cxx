@@ -2,6 +2,7 @@
 
 #include "MeniscusModel.h"
 #include "ThinTissueError.h"
+#include "vtkTissueModelBlocks.h"
 
 #include <vtkCellArray.h>
 #include <vtkCompositeDataSet.h>
@@ -136,11 +137,9 @@ void vtkMeniscusSource::FillExtraOutputs(vtkInformationVector* outputs, vtkMulti
   monitor->GetPointData()->AddArray(region);
   monitor->GetPointData()->AddArray(thickness);
   monitor->GetPointData()->AddArray(curveId);
-  const unsigned int block = all->GetNumberOfBlocks();
   vtkNew<vtkPolyData> copy;
   copy->ShallowCopy(monitor);
-  all->SetBlock(block, copy);
-  all->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), "MonitorPoints");
+  thintissue::appendNamedBlock(all, copy, "MonitorPoints");
 }
 
 void vtkMeniscusSource::PrintSelf(ostream& os, vtkIndent indent)

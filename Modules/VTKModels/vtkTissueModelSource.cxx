@@ -3,6 +3,7 @@
 #include "ThinTissueError.h"
 #include "TissueModel.h"
 #include "vtkThinTissueConversion.h"
+#include "vtkTissueModelBlocks.h"
 
 #include <vtkCompositeDataSet.h>
 #include <vtkDataObject.h>
@@ -101,16 +102,15 @@ vtkTypeBool vtkTissueModelSource::ProcessRequest(vtkInformation* request,
     visual->ShallowCopy(thintissue::toPolyData(model.visual));
     collision->ShallowCopy(thintissue::toPolyData(model.collision));
     simulation->ShallowCopy(thintissue::toUnstructuredGrid(model.simulation));
-    all->SetNumberOfBlocks(3);
+    all->Initialize();
     const char* names[3] = { "Visual", "Collision", "Simulation" };
     vtkDataObject* blocks[3] = { visual, collision, simulation };
-    for (unsigned int b = 0; b < 3; ++b)
+    for (int b = 0; b < 3; ++b)
     {
       vtkSmartPointer<vtkDataObject> copy;
       copy.TakeReference(blocks[b]->NewInstance());
       copy->ShallowCopy(blocks[b]);
-      all->SetBlock(b, copy);
-      all->GetMetaData(b)->Set(vtkCompositeDataSet::NAME(), names[b]);
+      thintissue::appendNamedBlock(all, copy, names[b]);
     }
     this->FillExtraOutputs(outputs, all);
   }

@@ -1,4 +1,7 @@
 // VTK sources of the procedural tissues: ports, arrays, multiblock, errors.
+#include "vtkKneeBoneSource.h"
+#include "vtkKneeSceneSource.h"
+#include "vtkKneeTissueSource.h"
 #include "vtkMeniscusSource.h"
 #include "vtkSurgicalInstrumentSource.h"
 #include "vtkThinSheetSource.h"
@@ -189,4 +192,62 @@ TEST(vtkSurgicalInstrumentSource, OutputsVisualCentreLineAndWorkingFeatures)
   EXPECT_EQ(errors->count, 1);
   EXPECT_NE(errors->all.find("probe_hook"), std::string::npos) << errors->all;
   EXPECT_EQ(instrument->GetInstrumentType(), vtkSurgicalInstrumentSource::LargeShaver);
+}
+
+TEST(vtkKneeSources, SceneBlocksTissueSettingsAndBones)
+{
+  vtkNew<vtkKneeSceneSource> knee;
+  knee->Update();
+  vtkMultiBlockDataSet* scene = knee->GetOutput();
+  const char* expected[6] = { "Tibia",
+    "Femur",
+    "TibialCartilage",
+    "AnteriorCruciateLigament",
+    "PosteriorCruciateLigament",
+    "MedialMeniscus" };
+  ASSERT_EQ(scene->GetNumberOfBlocks(), 6u);
+  for (unsigned int b = 0; b < 6; ++b)
+  {
+    EXPECT_EQ(blockName(scene, b), expected[b]);
+    auto* meshes = vtkMultiBlockDataSet::SafeDownCast(scene->GetBlock(b));
+    ASSERT_NE(meshes, nullptr);
+    EXPECT_EQ(meshes->GetNumberOfBlocks(), b < 2 ? 2u : 3u) << expected[b];
+    EXPECT_GT(vtkPolyData::SafeDownCast(meshes->GetBlock(0))->GetNumberOfPolys(), 1000);
+  }
+
+  vtkNew<vtkKneeTissueSource> ligament;
+  ligament->SetTissue(vtkKneeTissueSource::PosteriorCruciateLigament);
+  ligament->SetCollisionSetting(4);
+  ligament->Update();
+  EXPECT_EQ(ligament->GetCollisionOutput()->GetNumberOfPoints(), 45); // table 5-7
+  EXPECT_NE(ligament->GetCollisionOutput()->GetPointData()->GetArray("Radius"), nullptr);
+  ligament->SetCollisionSetting(2);
+  ligament->Update();
+  EXPECT_NEAR(ligament->GetCollisionOutput()->GetNumberOfPolys(), 2000, 100);
+  EXPECT_EQ(ligament->GetCollisionOutput()->GetPointData()->GetArray("Radius"), nullptr);
+
+  vtkNew<vtkKneeTissueSource> cartilage;
+  cartilage->SetTissue(vtkKneeTissueSource::TibialCartilage);
+  for (int setting = 2; setting <= 4; ++setting)
+  {
+    cartilage->SetCollisionSetting(setting);
+    cartilage->Update();
+    const double thesis[3] = { 1000, 500, 100 }; // fig. 5-27
+    EXPECT_NEAR(cartilage->GetCollisionOutput()->GetNumberOfPolys(),
+      thesis[setting - 2],
+      0.05 * thesis[setting - 2]);
+  }
+
+  vtkNew<vtkKneeBoneSource> bone;
+  bone->SetBone(vtkKneeBoneSource::Femur);
+  bone->Update();
+  EXPECT_NEAR(bone->GetOutput(0)->GetNumberOfPoints(), 5850, 0.05 * 5850); // table 6-2
+  EXPECT_NEAR(bone->GetOutput(1)->GetNumberOfPoints(), 59, 0.05 * 59);
+
+  vtkNew<ErrorCounter> errors;
+  knee->AddObserver(vtkCommand::ErrorEvent, errors);
+  knee->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  knee->SetJointGap(-1.0);
+  knee->Update();
+  EXPECT_NE(errors->all.find("joint gap"), std::string::npos) << errors->all;
 }
