@@ -1,15 +1,23 @@
-// ThinTissueDemo: loads a tissue surface (a generated thin slab by default),
-// prints its validation report and timings, and renders it -- in a window
-// when there is a display, otherwise offscreen into a PNG.
+// ThinTissueDemo: by default the simulator's knee scene (medial meniscus,
+// tibia, femur, cartilage, cruciate ligaments, a probe hook) seen through a
+// 30-degree arthroscope; or a tissue surface loaded from a file. Prints the
+// tissue's validation report and timings, and renders it -- in a window when
+// there is a display, otherwise offscreen into a PNG.
 //
 //   ThinTissueDemo [mesh-file] [--offscreen] [--screenshot out.png]
 //                  [--timings out.json] [--size WxH]
-#include "vtkThinSlabSource.h"
+#include "MeniscusModel.h"
+#include "SurgicalInstruments.h"
+#include "vtkKneeSceneSource.h"
+#include "vtkMeniscusSource.h"
+#include "vtkSurgicalInstrumentSource.h"
 #include "vtkThinTissueMeshReader.h"
 #include "vtkTriangleMeshValidationFilter.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkMatrix4x4.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPolyData.h>
@@ -53,8 +61,9 @@ void printUsage()
 {
   std::cout << "usage: ThinTissueDemo [mesh-file] [--offscreen] [--screenshot out.png]\n"
                "                      [--timings out.json] [--size WxH]\n"
-               "Loads a mesh (OBJ, STL, PLY, OFF, glTF, FBX, VTP, VTK, VTU; a generated thin\n"
-               "slab when none is given), prints its validation report and renders it.\n"
+               "Shows the knee scene through a 30-degree arthroscope, or loads a mesh (OBJ,\n"
+               "STL, PLY, OFF, glTF, FBX, VTP, VTK, VTU), prints the tissue's validation\n"
+               "report and renders it.\n"
                "Without a display it renders offscreen and writes a PNG.\n";
 }
 
@@ -145,6 +154,85 @@ void reexecuteUnderVirtualDisplay(int argc, char* argv[])
   execvp(arguments[0], arguments.data());
 }
 
+/// An opaque surface actor with a soft specular highlight.
+vtkSmartPointer<vtkActor> makeSurfaceActor(vtkPolyData* surface, double r, double g, double b)
+{
+  vtkNew<vtkPolyDataNormals> normals; // shading only: sharp edges split
+  normals->SetInputData(surface);
+  normals->SetFeatureAngle(60.0);
+  normals->ConsistencyOff();
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(normals->GetOutputPort());
+  mapper->ScalarVisibilityOff();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(r, g, b);
+  actor->GetProperty()->SetSpecular(0.35);
+  actor->GetProperty()->SetSpecularPower(25.0);
+  return actor;
+}
+
+/// The knee surroundings (everything but the meniscus) and a probe hook
+/// touching the meniscus's inner edge, into `renderer`; the camera is a
+/// 30-degree arthroscope in the anterolateral portal looking at the medial
+/// compartment.
+void addKneeSurroundings(vtkRenderer* renderer)
+{
+  vtkNew<vtkKneeSceneSource> knee;
+  knee->Update();
+  vtkMultiBlockDataSet* scene = knee->GetOutput();
+  const double colours[5][3] = { { 0.93, 0.85, 0.62 },
+    { 0.93, 0.85, 0.62 },
+    { 0.82, 0.86, 0.95 },
+    { 0.92, 0.62, 0.60 },
+    { 0.86, 0.55, 0.56 } };
+  for (unsigned int b = 0; b < 5; ++b) // tibia, femur, cartilage, ACL, PCL
+  {
+    auto* meshes = vtkMultiBlockDataSet::SafeDownCast(scene->GetBlock(b));
+    renderer->AddActor(makeSurfaceActor(
+      vtkPolyData::SafeDownCast(meshes->GetBlock(0)), colours[b][0], colours[b][1], colours[b][2]));
+  }
+
+  // Probe hook from the anteromedial portal, hook resting on the inner edge.
+  const auto solid = thintissue::makeMeniscusSolid(thintissue::MeniscusParameters{});
+  const thintissue::Vector3 tip = solid.point(thintissue::ParameterPoint(0.55, 0.15, 1.0));
+  const thintissue::Vector3 portal(-40.0, 45.0, 22.0);
+  const thintissue::Vector3 handle = (portal - tip).normalized();
+  const thintissue::Vector3 hook =
+    (-thintissue::Vector3::UnitZ() + thintissue::Vector3::UnitZ().dot(handle) * handle)
+      .normalized();
+  vtkNew<vtkMatrix4x4> pose;
+  for (int row = 0; row < 3; ++row)
+  {
+    pose->SetElement(row, 0, hook[row]);
+    pose->SetElement(row, 1, handle.cross(hook)[row]);
+    pose->SetElement(row, 2, handle[row]);
+    pose->SetElement(row, 3, tip[row]);
+  }
+  vtkNew<vtkSurgicalInstrumentSource> probe;
+  probe->SetInstrumentType(vtkSurgicalInstrumentSource::ProbeHook);
+  probe->Update();
+  auto probeActor = makeSurfaceActor(probe->GetOutput(0), 0.78, 0.80, 0.84);
+  probeActor->SetUserMatrix(pose);
+  renderer->AddActor(probeActor);
+
+  // The arthroscope: 30-degree optics turned to look down at the meniscus.
+  thintissue::ArthroscopeCamera scope = thintissue::defaultArthroscopeCamera();
+  scope.tip = thintissue::Vector3(-6.0, 22.0, 9.0);
+  const thintissue::Vector3 aim(-24.0, -6.0, 11.0);
+  scope.handleAxis = (scope.tip - aim).normalized();
+  scope.imageUp = thintissue::Vector3::UnitZ();
+  scope.opticsRotationDegrees = 180.0;
+  const thintissue::Vector3 focal = scope.focalPoint(25.0);
+  const thintissue::Vector3 up = scope.viewUp();
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(scope.tip.data());
+  camera->SetFocalPoint(focal.data());
+  camera->SetViewUp(up.data());
+  camera->SetViewAngle(75.0);
+  camera->SetClippingRange(scope.nearClipDistance, scope.farClipDistance);
+}
+
 double millisecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -171,19 +259,13 @@ int main(int argc, char* argv[])
 
   // Load.
   auto start = std::chrono::steady_clock::now();
-  vtkSmartPointer<vtkPolyDataAlgorithm> source;
+  vtkSmartPointer<vtkAlgorithm> source;
   std::string meshLabel;
-  if (options.meshFile.empty())
+  const bool kneeScene = options.meshFile.empty();
+  if (kneeScene)
   {
-    auto slab = vtkSmartPointer<vtkThinSlabSource>::New();
-    slab->SetWidth(40.0);
-    slab->SetDepth(30.0);
-    slab->SetThickness(2.0);
-    slab->SetCellsX(40);
-    slab->SetCellsY(30);
-    slab->SetCellsZ(2);
-    source = slab;
-    meshLabel = "generated thin slab 40 x 30 x 2";
+    source = vtkSmartPointer<vtkMeniscusSource>::New();
+    meshLabel = "knee scene: medial meniscus";
   }
   else
   {
@@ -252,12 +334,23 @@ int main(int argc, char* argv[])
   renderer->AddActor(actor);
   renderer->AddViewProp(text);
   renderer->GradientBackgroundOn();
-  renderer->SetBackground(0.10, 0.12, 0.16);
-  renderer->SetBackground2(0.30, 0.34, 0.42);
-  renderer->GetActiveCamera()->Elevation(-55.0);
-  renderer->GetActiveCamera()->Azimuth(25.0);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Zoom(1.3);
+  if (kneeScene)
+  {
+    actor->GetProperty()->SetColor(0.97, 0.95, 0.92); // meniscus white
+    actor->GetProperty()->EdgeVisibilityOff();
+    addKneeSurroundings(renderer);
+    renderer->SetBackground(0.25, 0.08, 0.07); // synovial red-brown
+    renderer->SetBackground2(0.45, 0.20, 0.16);
+  }
+  else
+  {
+    renderer->SetBackground(0.10, 0.12, 0.16);
+    renderer->SetBackground2(0.30, 0.34, 0.42);
+    renderer->GetActiveCamera()->Elevation(-55.0);
+    renderer->GetActiveCamera()->Azimuth(25.0);
+    renderer->ResetCamera();
+    renderer->GetActiveCamera()->Zoom(1.3);
+  }
 
   vtkNew<vtkRenderWindow> window;
   window->SetSize(options.width, options.height);
