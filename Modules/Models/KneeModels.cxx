@@ -10,7 +10,6 @@
 #include <functional>
 #include <limits>
 #include <sstream>
-#include <stdexcept>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -89,7 +88,7 @@ TibiaSection tibiaSection(double z)
   section.semiAxisX = 14.5 + (38.0 - 14.5) * p;
   section.anteriorSemiAxisY = 15.0 + (25.0 - 15.0) * p;
   section.posteriorSemiAxisY = 14.0 + (24.0 - 14.0) * p;
-  section.exponent = 2.2 + 0.8 * p;
+  section.exponent = 2.2 + 1.3 * p;
   // Posterior intercondylar notch of the outline (PCL facet).
   section.notch = 2.0 + 2.0 * p;
   return section;
@@ -113,8 +112,8 @@ double tibiaSideDistance(const Vector3& x)
 double tibiaImplicit(const Vector3& x)
 {
   const double top = x.z() - tibialPlateauHeight(x.x(), x.y());
-  const double body = smoothMax(top, tibiaSideDistance(x), 2.0);
-  return smoothMax(body, TibiaCutHeight - x.z(), 3.0);
+  const double body = smoothMax(top, tibiaSideDistance(x), 5.0);
+  return smoothMax(body, TibiaCutHeight - x.z(), 5.0);
 }
 
 // ---------------------------------------------------------------------------
@@ -136,20 +135,21 @@ double notchRoof(double y)
 
 double femurImplicitLocal(const Vector3& x)
 {
-  const double zc = CondyleSagittalRadius;
-  auto condyle = [&](double centreX)
-  {
-    const double radius =
-      CondyleSagittalRadius - square(x.x() - centreX) / (2.0 * CondyleCoronalRadius);
-    const double wheel = std::hypot(x.y(), x.z() - zc) - radius;
-    return smoothMax(wheel, std::abs(x.x() - centreX) - CondyleHalfWidth, 4.0);
-  };
-  const double condyles = std::min(
-    condyle(knee::medialCompartmentCentre().x()), condyle(knee::lateralCompartmentCentre().x()));
-  // Trochlea: a wheel whose radius grows away from x = 0 (the groove).
-  const double trochleaRadius = 18.0 + square(x.x()) / (2.0 * 9.0);
-  const double trochlea =
-    smoothMax(std::hypot(x.y() - 3.0, x.z() - zc) - trochleaRadius, std::abs(x.x()) - 11.0, 3.0);
+  // One "wheel" around the medial-lateral axis carries both condyles and
+  // the trochlea: its radius is largest over the compartment centres (the
+  // condyles' lowest points), falls off toward the epicondyles and dips
+  // into the trochlear groove at x = 0 (the notch removes the groove's
+  // distal-posterior part).
+  const double fromCondyle = std::abs(x.x()) - knee::lateralCompartmentCentre().x();
+  const double condyleRadius =
+    CondyleSagittalRadius - square(fromCondyle) / (2.0 * CondyleCoronalRadius);
+  const double grooveRadius = 17.5 + 3.0 * (1.0 - gaussian(x.x(), 6.0));
+  const double radius = smoothMax(condyleRadius, grooveRadius, 2.0);
+  // Its sides are domes (the epicondyles), not flat faces.
+  const double fromAxis = std::hypot(x.y(), x.z() - CondyleSagittalRadius);
+  const double halfWidth = knee::lateralCompartmentCentre().x() + CondyleHalfWidth +
+                           3.0 * (1.0 - square(fromAxis / CondyleSagittalRadius));
+  const double wheel = smoothMax(fromAxis - radius, std::abs(x.x()) - halfWidth, 8.0);
   // Metaphysis and shaft: elliptic sections narrowing upward.
   const double t = smoothStep(28.0, 66.0, x.z());
   const double semiAxisX = 37.0 + (14.0 - 37.0) * t;
@@ -158,15 +158,14 @@ double femurImplicitLocal(const Vector3& x)
   const double section =
     superellipseDistance(x.x(), x.y() - centreY, semiAxisX, semiAxisY, 2.4 - 0.4 * t);
   const double block =
-    smoothMax(smoothMax(section, 16.0 - x.z(), 10.0), x.z() - FemurShaftLength, 3.0);
+    smoothMax(smoothMax(section, 16.0 - x.z(), 10.0), x.z() - FemurShaftLength, 5.0);
 
-  double body = smoothMin(condyles, trochlea, 3.0);
-  body = smoothMin(body, block, 6.0);
+  const double body = smoothMin(wheel, block, 6.0);
   // Intercondylar notch: between the condyles, behind the trochlea, below
   // the roof (Blumensaat's line, rising posteriorly).
   const double notch = smoothMax(
-    smoothMax(std::abs(x.x()) - NotchHalfWidth, x.z() - notchRoof(x.y()), 2.0), x.y() - 9.0, 2.0);
-  return smoothMax(body, -notch, 2.5);
+    smoothMax(std::abs(x.x()) - NotchHalfWidth, x.z() - notchRoof(x.y()), 8.0), x.y() - 9.0, 4.0);
+  return smoothMax(body, -notch, 4.0);
 }
 
 // ---------------------------------------------------------------------------
@@ -446,32 +445,48 @@ TriangleMesh meshImplicitSolid(const ImplicitFunction& f,
   int targetVertices,
   const std::string& name)
 {
-  double spacing = 3.0;
+  // The count follows a power law of the spacing (about spacing^-2): fit
+  // its exponent from the last two tries and step toward the target. Flat
+  // parts of the surface make the count jump with the grid's alignment, so
+  // finish with a scan of nearby spacings.
   TriangleMesh best;
   double bestError = std::numeric_limits<double>::infinity();
-  double bestSpacing = spacing;
-  for (int attempt = 0; attempt < 12; ++attempt)
+  double bestSpacing = 3.0;
+  auto attempt = [&](double spacing)
   {
     TriangleMesh mesh = marchingTetrahedra(f, box, spacing);
-    const double count = static_cast<double>(mesh.vertexCount());
+    const double count = std::max<double>(1.0, static_cast<double>(mesh.vertexCount()));
     const double error = std::abs(count - targetVertices) / targetVertices;
     if (error < bestError)
     {
       bestError = error;
-      best = std::move(mesh);
       bestSpacing = spacing;
+      best = std::move(mesh);
     }
-    if (bestError < 0.004)
+    return count;
+  };
+  constexpr double Tolerance = 0.005;
+  double spacing = bestSpacing;
+  double previousLogSpacing = 0.0;
+  double previousLogCount = 0.0;
+  for (int step = 0; step < 6 && bestError > Tolerance; ++step)
+  {
+    const double count = attempt(spacing);
+    double exponent = 2.0;
+    if (step > 0 && std::abs(std::log(spacing) - previousLogSpacing) > 1e-9)
     {
-      break;
+      exponent = std::clamp(
+        -(std::log(count) - previousLogCount) / (std::log(spacing) - previousLogSpacing), 1.0, 3.0);
     }
-    // Secant-like update in log space, damped after the first steps.
-    const double factor = std::sqrt(count / targetVertices);
-    spacing *= attempt < 3 ? factor : std::pow(factor, 0.5 + 0.04 * attempt);
-    if (attempt >= 6)
-    {
-      spacing = bestSpacing * (1.0 + 0.003 * (attempt - 5) * (attempt % 2 == 0 ? 1.0 : -1.0));
-    }
+    previousLogSpacing = std::log(spacing);
+    previousLogCount = std::log(count);
+    spacing *= std::pow(count / targetVertices, 1.0 / exponent);
+  }
+  const double centre = bestSpacing;
+  for (int k = 1; k <= 12 && bestError > Tolerance; ++k)
+  {
+    attempt(centre * (1.0 + 0.0025 * k));
+    attempt(centre * (1.0 - 0.0025 * k));
   }
   best.name = name;
   relaxOnSurface(best, f, 12);
@@ -507,7 +522,7 @@ Vector3 surfacePointBetween(const ImplicitFunction& f,
     }
     previous = x;
   }
-  throw std::logic_error("knee models: a collision ray missed the bone");
+  throw Error("knee models: a collision ray missed the bone (internal error)");
 }
 
 /// A coarse closed surface: a pole, `rings` rings of `sectors` points, a
@@ -617,8 +632,11 @@ struct LigamentShape
   std::array<Vector3, 4> control; // cubic Bezier of the centre line
   double tibialWidth, middleWidth, femoralWidth;
   double thickness;
-  /// Twist of the band about its axis in the middle (radians), zero at the
-  /// insertions.
+  /// Turn of the band about its axis at the tibial insertion (radians),
+  /// relative to a band lying in a sagittal plane; kept over the tibia, it
+  /// unwinds in the middle half.
+  double tibialTwist;
+  /// Extra twist in the middle (radians), zero at the insertions.
   double twist;
 };
 
@@ -629,10 +647,12 @@ LigamentShape ligamentShape(CruciateLigament ligament, double jointGap)
   LigamentShape shape;
   if (ligament == CruciateLigament::Anterior)
   {
-    const Vector3 tibial(-1.0, 10.0, -3.5);
-    const Vector3 femoral(13.0, -11.0, 22.0 + lift);
+    // Tibial footprint elongated anterior-posterior in front of the
+    // spines; femoral footprint on the medial wall of the lateral condyle.
+    const Vector3 tibial(-1.5, 11.0, -3.5);
+    const Vector3 femoral(12.5, -11.0, 22.0 + lift);
     const Vector3 tibialDirection = Vector3(0.0, -0.3, 1.0).normalized();
-    const Vector3 femoralDirection = Vector3(0.45, -0.55, 0.7).normalized();
+    const Vector3 femoralDirection = Vector3(0.7, -0.45, 0.55).normalized();
     shape.control = {
       tibial, tibial + 9.0 * tibialDirection, femoral - 9.0 * femoralDirection, femoral
     };
@@ -640,22 +660,27 @@ LigamentShape ligamentShape(CruciateLigament ligament, double jointGap)
     shape.middleWidth = 9.5;
     shape.femoralWidth = 11.0;
     shape.thickness = 4.5;
-    shape.twist = 25.0 * M_PI / 180.0;
+    shape.tibialTwist = 0.0;
+    shape.twist = 20.0 * M_PI / 180.0;
   }
   else
   {
-    const Vector3 tibial(0.0, -12.5, -10.0);
-    const Vector3 femoral(-13.0, 4.0, 20.0 + lift);
-    const Vector3 tibialDirection = Vector3(-0.1, 0.15, 1.0).normalized();
-    const Vector3 femoralDirection = Vector3(-0.45, 0.45, 0.75).normalized();
+    // Tibial footprint wide medial-lateral on the posterior intercondylar
+    // slope below the plateau; femoral footprint on the lateral wall of the
+    // medial condyle, anteriorly: the band turns through about 90 degrees.
+    const Vector3 tibial(0.0, -16.2, -13.0);
+    const Vector3 femoral(-12.5, 1.0, 21.0 + lift);
+    const Vector3 tibialDirection = Vector3(0.0, 0.1, 1.0).normalized();
+    const Vector3 femoralDirection = Vector3(-0.7, 0.35, 0.62).normalized();
     shape.control = {
-      tibial, tibial + 10.0 * tibialDirection, femoral - 10.0 * femoralDirection, femoral
+      tibial, tibial + 12.0 * tibialDirection, femoral - 10.0 * femoralDirection, femoral
     };
-    shape.tibialWidth = 12.0;
+    shape.tibialWidth = 11.0;
     shape.middleWidth = 11.0;
     shape.femoralWidth = 13.0;
     shape.thickness = 5.0;
-    shape.twist = -20.0 * M_PI / 180.0;
+    shape.tibialTwist = 90.0 * M_PI / 180.0;
+    shape.twist = -10.0 * M_PI / 180.0;
   }
   return shape;
 }
@@ -741,14 +766,16 @@ double tibialPlateauHeight(double x, double y)
   double h = (1.0 - blend) * medial + blend * lateral;
   // Intercondylar eminence: a low ridge carrying the two tibial spines
   // (the medial one taller).
-  const double ridgeWindow = smoothStep(-14.0, -6.0, y) * (1.0 - smoothStep(3.0, 9.0, y));
-  h += 1.2 * gaussian(x, 5.0) * ridgeWindow;
-  h += 3.5 * gaussian(x + 4.5, 2.2) * gaussian(y + 1.0, 3.5);
-  h += 3.0 * gaussian(x - 4.5, 2.2) * gaussian(y + 3.0, 3.5);
+  const double ridgeWindow = smoothStep(-14.0, -6.0, y) * (1.0 - smoothStep(1.0, 7.0, y));
+  h += 1.0 * gaussian(x, 5.0) * ridgeWindow;
+  h += 3.5 * gaussian(x + 4.5, 2.2) * gaussian(y + 1.5, 3.5);
+  h += 3.0 * gaussian(x - 4.5, 2.2) * gaussian(y + 3.5, 3.5);
   // Anterior intercondylar area (ACL footprint): a shallow hollow.
-  h -= 1.5 * gaussian(x, 7.0) * smoothStep(4.0, 10.0, y);
+  const double intercondylar = 1.0 - smoothStep(4.0, 10.0, std::abs(x));
+  h -= 2.0 * intercondylar * smoothStep(1.0, 9.0, y);
   // Posterior intercondylar area sloping down to the PCL facet.
-  h -= 9.0 * gaussian(x, 7.0) * smoothStep(-8.0, -20.0, y);
+  const double fossa = 1.0 - smoothStep(3.0, 14.0, std::abs(x));
+  h -= 8.0 * fossa * smoothStep(-6.0, -19.0, y);
   return h;
 }
 
@@ -934,8 +961,9 @@ TissueModel makeTibialCartilage(const KneeSurroundingsParameters& parameters)
   model.collision = tibialCartilageCollisionMesh(parameters, parameters.cartilageCollisionSetting);
   // Fixed on the bone side (w = 0); the cartilage is non-deformable in most
   // procedures (5.4.4) but the hexahedra let a scene soften it.
+  // The margin in the plane covers the outline's bulge between nodes.
   model.simulation = solid.hexahedra(parameters.cartilageHexahedra,
-    { 0.3, 0.3, 0.2 },
+    { 1.0, 1.0, 0.2 },
     [](const ParameterPoint& p) { return p[2] < 1e-9; });
   model.simulation.name = model.name + " hexahedra";
   return model;
@@ -963,7 +991,8 @@ ParametricSolid makeCruciateLigamentSolid(CruciateLigament ligament,
     const Vector3 lateral =
       (Vector3::UnitX() - Vector3::UnitX().dot(tangent) * tangent).normalized();
     const Vector3 sideways = lateral.cross(tangent);
-    const double twist = shape.twist * std::sin(M_PI * s);
+    const double twist =
+      shape.tibialTwist * (1.0 - smoothStep(0.25, 0.75, s)) + shape.twist * std::sin(M_PI * s);
     const Vector3 normal = std::cos(twist) * lateral + std::sin(twist) * sideways;
     const Vector3 widthDirection = normal.cross(tangent);
     // Width fans out toward the insertions.
@@ -1005,6 +1034,9 @@ TriangleMesh cruciateLigamentCollisionMesh(CruciateLigament ligament,
         "unknown ligament collision setting " + std::to_string(static_cast<int>(setting)));
   }
   mesh.name = solid.name() + " collision";
+  // Collision on the closed surface itself: no thickness.
+  mesh.pointAttributes.set(
+    CollisionRadiusArrayName, 1, std::vector<double>(mesh.vertexCount(), 0.0));
   return mesh;
 }
 
@@ -1019,8 +1051,8 @@ TissueModel makeCruciateLigament(CruciateLigament ligament,
   model.name = solid.name();
   model.visual = solid.boundarySurface(resolution.visual, parameters.textureScale);
   model.collision = solid.midSurface(resolution.reducedAlong, resolution.reducedAcross);
-  // Attached at both insertions. The margin across covers the band's
-  // mid-surface where its cross-section is widest.
+  // Attached at both insertions; the margins make the trilinear cells
+  // contain the curved, twisted band.
   model.simulation = solid.hexahedra(resolution.hexahedra,
     { 0.3, 0.5, 0.3 },
     [](const ParameterPoint& p) { return p[0] < 1e-9 || p[0] > 1.0 - 1e-9; });

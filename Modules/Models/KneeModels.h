@@ -64,13 +64,13 @@ enum class CruciateLigament
 
 THINTISSUEMODELS_EXPORT const char* cruciateLigamentName(CruciateLigament ligament);
 
-/// Resolution of one cruciate ligament. The defaults reproduce table 5-7.
-/// A closed genus-0 surface has V = T/2 + 2: the PCL's thesis figures
-/// (5,634 v / 11,264 t) obey it exactly, the ACL's (5,702 v / 12,064 t) do
-/// not, so its visual grid is chosen with both counts within 5%
-/// (5,890 v / 11,776 t). The closed collision surfaces have 2,000 and 496
-/// triangles (thesis: 2,001 / 1,999 and 500 / 499; an odd count cannot
-/// close a surface).
+/// Resolution of one cruciate ligament (anteriorCruciateResolution and
+/// posteriorCruciateResolution give the figures of table 5-7). A closed
+/// genus-0 surface has V = T/2 + 2: the PCL's thesis figures (5,634 v /
+/// 11,264 t) obey it exactly, the ACL's (5,702 v / 12,064 t) do not, so its
+/// visual grid is chosen with both counts within 5% (5,890 v / 11,776 t).
+/// The closed collision surfaces have 2,000 and 496 triangles (thesis:
+/// 2,001 / 1,999 and 500 / 499; an odd count cannot close a surface).
 struct LigamentResolution
 {
   ParametricResolution visual{ 82, 24, 8 };
@@ -83,6 +83,28 @@ struct LigamentResolution
   /// Hexahedra (simulation mesh).
   ParametricResolution hexahedra{ 8, 2, 1 };
 };
+
+/// Table 5-7 for the ACL: visual 86 x 24 x 8 cells (5,890 v / 11,776 t),
+/// reduced mid-surface 4 x 4 cells (25 v / 32 t).
+inline LigamentResolution anteriorCruciateResolution()
+{
+  LigamentResolution resolution;
+  resolution.visual = { 86, 24, 8 };
+  resolution.reducedAlong = 4;
+  resolution.reducedAcross = 4;
+  return resolution;
+}
+
+/// Table 5-7 for the PCL: visual 82 x 24 x 8 cells (5,634 v / 11,264 t),
+/// reduced mid-surface 8 x 4 cells (45 v / 64 t).
+inline LigamentResolution posteriorCruciateResolution()
+{
+  LigamentResolution resolution;
+  resolution.visual = { 82, 24, 8 };
+  resolution.reducedAlong = 8;
+  resolution.reducedAcross = 4;
+  return resolution;
+}
 
 struct KneeSurroundingsParameters
 {
@@ -112,18 +134,8 @@ struct KneeSurroundingsParameters
   ParametricResolution cartilageHexahedra{ 6, 4, 1 };
   CartilageCollisionSetting cartilageCollisionSetting = CartilageCollisionSetting::Triangles100;
 
-  LigamentResolution anteriorCruciate{ { 86, 24, 8 },
-    { 39, 8, 4 },
-    { 14, 6, 2 },
-    4,
-    4,
-    { 8, 2, 1 } };
-  LigamentResolution posteriorCruciate{ { 82, 24, 8 },
-    { 39, 8, 4 },
-    { 14, 6, 2 },
-    8,
-    4,
-    { 8, 2, 1 } };
+  LigamentResolution anteriorCruciate = anteriorCruciateResolution();
+  LigamentResolution posteriorCruciate = posteriorCruciateResolution();
 
   /// Texture coordinates are model units divided by this (mm).
   double textureScale = 10.0;
@@ -178,7 +190,8 @@ THINTISSUEMODELS_EXPORT TissueModel makeTibialCartilage(
   const KneeSurroundingsParameters& parameters);
 
 /// The cartilage collision mesh of one setting: the closed visual surface
-/// for VisualMesh, otherwise a mid-surface with the attribute "Radius".
+/// for VisualMesh (with "Radius" 0: contact on the surface itself),
+/// otherwise a mid-surface with "Radius" = half the local thickness.
 THINTISSUEMODELS_EXPORT TriangleMesh tibialCartilageCollisionMesh(
   const KneeSurroundingsParameters& parameters,
   CartilageCollisionSetting setting);
@@ -206,8 +219,10 @@ THINTISSUEMODELS_EXPORT TissueModel makeCruciateLigament(CruciateLigament ligame
   const KneeSurroundingsParameters& parameters);
 
 /// The ligament's collision mesh of one setting of table 5-7: closed
-/// surfaces for settings 1 to 3 (setting 1 is the visual surface), the
-/// reduced mid-surface with "Radius" for setting 4.
+/// surfaces for settings 1 to 3 (setting 1 is the visual surface; "Radius"
+/// 0 on every vertex), the reduced mid-surface with "Radius" = half the
+/// local thickness for setting 4. Throws InvalidInputError on an unknown
+/// setting.
 THINTISSUEMODELS_EXPORT TriangleMesh cruciateLigamentCollisionMesh(CruciateLigament ligament,
   LigamentCollisionSetting setting,
   const KneeSurroundingsParameters& parameters);
