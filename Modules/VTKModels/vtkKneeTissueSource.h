@@ -9,8 +9,8 @@
  * cartilage 1 = the visual mesh, 2/3/4 = mid-surfaces with radii of about
  * 1,000 / 500 / 100 triangles (fig. 5-27); ligaments 1 = the visual mesh,
  * 2/3 = closed surfaces of about 2,000 / 500 triangles, 4 = the reduced
- * mid-surface with radii (table 5-7). Setting 1 to 3 of the ligaments and 1
- * of the cartilage have no "Radius" array.
+ * mid-surface with radii (table 5-7). The closed surfaces (ligament settings
+ * 1 to 3, cartilage setting 1) have "Radius" 0.
  */
 #ifndef vtkKneeTissueSource_h
 #define vtkKneeTissueSource_h
