@@ -1,6 +1,7 @@
 #include "KneeModels.h"
 
 #include "KneeAnatomy.h"
+#include "ModelParameterChecks.h"
 #include "ThinTissueError.h"
 
 #include <algorithm>
@@ -575,28 +576,15 @@ TriangleMesh ringSurface(const Vector3& firstPole,
 // ---------------------------------------------------------------------------
 // Parameter checks.
 
-[[noreturn]] void failParameter(const std::string& problem)
-{
-  throw InvalidInputError("knee surroundings: " + problem);
-}
-
-void requireAtLeast(int value, int minimum, const std::string& what)
-{
-  if (value < minimum)
-  {
-    std::ostringstream message;
-    message << what << " must be at least " << minimum << " (got " << value << ")";
-    failParameter(message.str());
-  }
-}
+const detail::ParameterChecks Checks("knee surroundings");
 
 void requireResolution(const ParametricResolution& resolution,
   const ParametricResolution& minimum,
   const std::string& what)
 {
-  requireAtLeast(resolution.along, minimum.along, what + " cells along");
-  requireAtLeast(resolution.across, minimum.across, what + " cells across");
-  requireAtLeast(resolution.through, minimum.through, what + " cells through");
+  Checks.requireAtLeast(resolution.along, minimum.along, what + " cells along");
+  Checks.requireAtLeast(resolution.across, minimum.across, what + " cells across");
+  Checks.requireAtLeast(resolution.through, minimum.through, what + " cells through");
 }
 
 void requireLigament(const LigamentResolution& r, const std::string& name)
@@ -604,8 +592,8 @@ void requireLigament(const LigamentResolution& r, const std::string& name)
   requireResolution(r.visual, { 4, 2, 2 }, name + " visual");
   requireResolution(r.collision2000, { 2, 2, 1 }, name + " 2,000-triangle collision surface");
   requireResolution(r.collision500, { 2, 2, 1 }, name + " 500-triangle collision surface");
-  requireAtLeast(r.reducedAlong, 1, name + " reduced collision cells along");
-  requireAtLeast(r.reducedAcross, 1, name + " reduced collision cells across");
+  Checks.requireAtLeast(r.reducedAlong, 1, name + " reduced collision cells along");
+  Checks.requireAtLeast(r.reducedAcross, 1, name + " reduced collision cells across");
   requireResolution(r.hexahedra, { 1, 1, 1 }, name + " hexahedra");
 }
 
@@ -721,18 +709,18 @@ void validateKneeSurroundingsParameters(const KneeSurroundingsParameters& p)
     message << "joint gap must be between 0.5 and 12 mm (got " << p.jointGap
             << "): a closed joint leaves no room for instruments, a wider one tears the "
                "cruciate ligaments";
-    failParameter(message.str());
+    Checks.fail(message.str());
   }
-  requireAtLeast(p.tibiaVisualVertices, 200, "tibia visual vertices");
-  requireAtLeast(p.femurVisualVertices, 200, "femur visual vertices");
+  Checks.requireAtLeast(p.tibiaVisualVertices, 200, "tibia visual vertices");
+  Checks.requireAtLeast(p.femurVisualVertices, 200, "femur visual vertices");
   if (p.tibiaVisualVertices > 2000000 || p.femurVisualVertices > 2000000)
   {
-    failParameter("bone visual vertices must be at most 2,000,000");
+    Checks.fail("bone visual vertices must be at most 2,000,000");
   }
-  requireAtLeast(p.tibiaCollisionRings, 3, "tibia collision rings");
-  requireAtLeast(p.tibiaCollisionSectors, 4, "tibia collision sectors");
-  requireAtLeast(p.femurCollisionRings, 3, "femur collision rings");
-  requireAtLeast(p.femurCollisionSectors, 4, "femur collision sectors");
+  Checks.requireAtLeast(p.tibiaCollisionRings, 3, "tibia collision rings");
+  Checks.requireAtLeast(p.tibiaCollisionSectors, 4, "tibia collision sectors");
+  Checks.requireAtLeast(p.femurCollisionRings, 3, "femur collision rings");
+  Checks.requireAtLeast(p.femurCollisionSectors, 4, "femur collision sectors");
   requireResolution(p.cartilageVisual, { 2, 2, 1 }, "cartilage visual");
   requireResolution(p.cartilageCollision1000, { 1, 1, 0 }, "cartilage 1,000-triangle collision");
   requireResolution(p.cartilageCollision500, { 1, 1, 0 }, "cartilage 500-triangle collision");
@@ -741,8 +729,7 @@ void validateKneeSurroundingsParameters(const KneeSurroundingsParameters& p)
   const int setting = static_cast<int>(p.cartilageCollisionSetting);
   if (setting < 1 || setting > 4)
   {
-    failParameter(
-      "cartilage collision setting must be 1 to 4 (got " + std::to_string(setting) + ")");
+    Checks.fail("cartilage collision setting must be 1 to 4 (got " + std::to_string(setting) + ")");
   }
   requireLigament(p.anteriorCruciate, "anterior cruciate ligament");
   requireLigament(p.posteriorCruciate, "posterior cruciate ligament");
@@ -750,7 +737,7 @@ void validateKneeSurroundingsParameters(const KneeSurroundingsParameters& p)
   {
     std::ostringstream message;
     message << "texture scale must be a positive number (got " << p.textureScale << ")";
-    failParameter(message.str());
+    Checks.fail(message.str());
   }
 }
 
@@ -949,7 +936,7 @@ TriangleMesh tibialCartilageCollisionMesh(const KneeSurroundingsParameters& para
       return solid.midSurface(
         parameters.cartilageCollision100.along, parameters.cartilageCollision100.across);
   }
-  failParameter("unknown cartilage collision setting " + std::to_string(static_cast<int>(setting)));
+  Checks.fail("unknown cartilage collision setting " + std::to_string(static_cast<int>(setting)));
 }
 
 TissueModel makeTibialCartilage(const KneeSurroundingsParameters& parameters)
@@ -1030,7 +1017,7 @@ TriangleMesh cruciateLigamentCollisionMesh(CruciateLigament ligament,
     case LigamentCollisionSetting::ReducedWithRadii:
       return solid.midSurface(resolution.reducedAlong, resolution.reducedAcross);
     default:
-      failParameter(
+      Checks.fail(
         "unknown ligament collision setting " + std::to_string(static_cast<int>(setting)));
   }
   mesh.name = solid.name() + " collision";

@@ -1,5 +1,6 @@
 #include "MeniscusModel.h"
 
+#include "ModelParameterChecks.h"
 #include "ThinTissueError.h"
 
 #include <algorithm>
@@ -20,57 +21,35 @@ constexpr double InnerEdgeGrading = 1.3;
 /// (fraction of width)^WedgeExponent: concave, to seat the femoral condyle.
 constexpr double WedgeExponent = 1.5;
 
-[[noreturn]] void fail(const std::string& problem)
-{
-  throw InvalidInputError("meniscus: " + problem);
-}
-
-void requirePositive(double value, const char* what)
-{
-  if (!(value > 0.0) || !std::isfinite(value))
-  {
-    std::ostringstream message;
-    message << what << " must be a positive number (got " << value << ")";
-    fail(message.str());
-  }
-}
-
-void requireAtLeast(int value, int minimum, const char* what)
-{
-  if (value < minimum)
-  {
-    std::ostringstream message;
-    message << what << " must be at least " << minimum << " (got " << value << ")";
-    fail(message.str());
-  }
-}
+const detail::ParameterChecks Checks("meniscus");
 
 void validate(const MeniscusParameters& p)
 {
-  requirePositive(p.outerSemiAxisX, "outer semi-axis x");
-  requirePositive(p.outerSemiAxisY, "outer semi-axis y");
-  requirePositive(p.innerSemiAxisX, "inner semi-axis x");
-  requirePositive(p.innerSemiAxisY, "inner semi-axis y");
-  requirePositive(p.rimHeight, "rim height");
-  requirePositive(p.hornHeight, "horn height");
-  requirePositive(p.innerEdgeHeight, "inner edge height");
-  requirePositive(p.textureScale, "texture scale");
-  requirePositive(p.monitorDataPointsPerCentimetre, "monitor data points per centimetre");
-  requirePositive(p.regionDepth, "region depth");
-  requirePositive(p.monitorInset, "monitor inset");
+  Checks.requirePositive(p.outerSemiAxisX, "outer semi-axis x");
+  Checks.requirePositive(p.outerSemiAxisY, "outer semi-axis y");
+  Checks.requirePositive(p.innerSemiAxisX, "inner semi-axis x");
+  Checks.requirePositive(p.innerSemiAxisY, "inner semi-axis y");
+  Checks.requirePositive(p.rimHeight, "rim height");
+  Checks.requirePositive(p.hornHeight, "horn height");
+  Checks.requirePositive(p.innerEdgeHeight, "inner edge height");
+  Checks.requirePositive(p.textureScale, "texture scale");
+  Checks.requirePositive(p.monitorDataPointsPerCentimetre, "monitor data points per centimetre");
+  Checks.requirePositive(p.regionDepth, "region depth");
+  Checks.requirePositive(p.monitorInset, "monitor inset");
   if (!p.centre.allFinite() || !std::isfinite(p.innerCentreOffsetX) ||
       !std::isfinite(p.innerCentreOffsetY))
   {
-    fail("centre and inner centre offset must be finite");
+    Checks.fail("centre and inner centre offset must be finite");
   }
   if (p.innerEdgeHeight >= p.rimHeight || p.innerEdgeHeight >= p.hornHeight)
   {
-    fail("the inner edge must be thinner than the rim and the horns (wedge cross-section)");
+    Checks.fail("the inner edge must be thinner than the rim and the horns (wedge cross-section)");
   }
   const double span = p.anteriorHornAngle - p.posteriorHornAngle;
   if (!(span > 0.0 && span < 180.0))
   {
-    fail("the horn angles must leave an opening between 0 and 180 degrees (anterior > posterior)");
+    Checks.fail(
+      "the horn angles must leave an opening between 0 and 180 degrees (anterior > posterior)");
   }
   // The inner edge must lie inside the rim with a margin everywhere.
   for (int k = 0; k <= 360; ++k)
@@ -82,20 +61,21 @@ void validate(const MeniscusParameters& p)
     const double outerRadius = outer.norm();
     if (inner.dot(outer / outerRadius) >= outerRadius - 1.0)
     {
-      fail("the inner edge ellipse must lie inside the outer rim ellipse, at least 1 mm from it");
+      Checks.fail(
+        "the inner edge ellipse must lie inside the outer rim ellipse, at least 1 mm from it");
     }
   }
-  requireAtLeast(p.visualAlong, 8, "visual cells along the C");
-  requireAtLeast(p.visualAcross, 2, "visual cells across");
-  requireAtLeast(p.visualThrough, 1, "visual cells through the thickness");
-  requireAtLeast(p.collisionAlong, 4, "collision cells along the C");
-  requireAtLeast(p.collisionAcross, 1, "collision cells across");
-  requireAtLeast(p.hexahedraAlong, 2, "hexahedra along the C");
-  requireAtLeast(p.hexahedraAcross, 1, "hexahedra across");
-  requireAtLeast(p.hexahedraThrough, 1, "hexahedra through the thickness");
+  Checks.requireAtLeast(p.visualAlong, 8, "visual cells along the C");
+  Checks.requireAtLeast(p.visualAcross, 2, "visual cells across");
+  Checks.requireAtLeast(p.visualThrough, 1, "visual cells through the thickness");
+  Checks.requireAtLeast(p.collisionAlong, 4, "collision cells along the C");
+  Checks.requireAtLeast(p.collisionAcross, 1, "collision cells across");
+  Checks.requireAtLeast(p.hexahedraAlong, 2, "hexahedra along the C");
+  Checks.requireAtLeast(p.hexahedraAcross, 1, "hexahedra across");
+  Checks.requireAtLeast(p.hexahedraThrough, 1, "hexahedra through the thickness");
   if (!(p.hornAttachment >= 0.0 && p.hornAttachment < 0.5))
   {
-    fail("horn attachment must be in [0, 0.5)");
+    Checks.fail("horn attachment must be in [0, 0.5)");
   }
   const MeniscusTear& tear = p.tear;
   if (tear.type == MeniscusTearType::None)
@@ -111,11 +91,11 @@ void validate(const MeniscusParameters& p)
     message << meniscusTearTypeName(tear.type) << " tear outside the meniscus: along ["
             << tear.alongBegin << ", " << tear.alongEnd << "], across " << tear.across
             << " (need 0 < begin < end < 1 and 0 < across < 1)";
-    fail(message.str());
+    Checks.fail(message.str());
   }
   if (!(tear.opening >= 0.0))
   {
-    fail("tear opening must not be negative");
+    Checks.fail("tear opening must not be negative");
   }
 }
 
@@ -484,7 +464,7 @@ std::vector<MonitorCurve> sampleMonitorCurves(const MeniscusParameters& paramete
   const std::vector<MonitorCurve>& dataCurves,
   double maxSpacing)
 {
-  requirePositive(maxSpacing, "monitor point spacing");
+  Checks.requirePositive(maxSpacing, "monitor point spacing");
   const ParametricSolid solid = makeMeniscusSolid(parameters);
   std::vector<MonitorCurve> dense;
   for (const auto& data : dataCurves)
@@ -493,7 +473,7 @@ std::vector<MonitorCurve> sampleMonitorCurves(const MeniscusParameters& paramete
         data.regionParameters.size() != data.monitorParameters.size() ||
         data.thickness.size() != data.monitorParameters.size())
     {
-      fail("monitor curve '" + data.name + "' needs at least two complete data points");
+      Checks.fail("monitor curve '" + data.name + "' needs at least two complete data points");
     }
     MonitorCurve curve;
     curve.name = data.name;

@@ -1,5 +1,6 @@
 #include "ThinSheetModel.h"
 
+#include "ModelParameterChecks.h"
 #include "ParametricSolid.h"
 #include "ThinTissueError.h"
 
@@ -12,26 +13,7 @@ namespace thintissue
 namespace
 {
 
-void requirePositive(double value, const char* what)
-{
-  if (!(value > 0.0) || !std::isfinite(value))
-  {
-    std::ostringstream message;
-    message << "thin sheet: " << what << " must be a positive number (got " << value << ")";
-    throw InvalidInputError(message.str());
-  }
-}
-
-void requireAtLeast(int value, int minimum, const char* what)
-{
-  if (value < minimum)
-  {
-    std::ostringstream message;
-    message << "thin sheet: " << what << " must be at least " << minimum << " (got " << value
-            << ")";
-    throw InvalidInputError(message.str());
-  }
-}
+const detail::ParameterChecks Checks("thin sheet");
 
 /// Mid-surface lattice of near-equilateral triangles over the unit square:
 /// rows of `columns` + 1 points alternate with rows of `columns` + 2 points
@@ -138,10 +120,10 @@ ThinSheetParameters thesisSheetCollisionResolution(int model, ThinSheetParameter
 
 TissueModel makeThinSheet(const ThinSheetParameters& p)
 {
-  requirePositive(p.width, "width");
-  requirePositive(p.depth, "depth");
-  requirePositive(p.thickness, "thickness");
-  requirePositive(p.textureScale, "texture scale");
+  Checks.requirePositive(p.width, "width");
+  Checks.requirePositive(p.depth, "depth");
+  Checks.requirePositive(p.thickness, "thickness");
+  Checks.requirePositive(p.textureScale, "texture scale");
   if (p.thickness >= std::min(p.width, p.depth))
   {
     std::ostringstream message;
@@ -149,14 +131,14 @@ TissueModel makeThinSheet(const ThinSheetParameters& p)
             << " must be smaller than the width and depth (" << p.width << " x " << p.depth << ")";
     throw InvalidInputError(message.str());
   }
-  requireAtLeast(p.visualCellsX, 1, "visual cells along x");
-  requireAtLeast(p.visualCellsY, 1, "visual cells along y");
-  requireAtLeast(p.visualCellsZ, 1, "visual cells along z");
-  requireAtLeast(p.collisionColumns, 1, "collision columns");
-  requireAtLeast(p.collisionRows, 1, "collision rows");
-  requireAtLeast(p.hexahedraX, 1, "hexahedra along x");
-  requireAtLeast(p.hexahedraY, 1, "hexahedra along y");
-  requireAtLeast(p.hexahedraZ, 1, "hexahedra along z");
+  Checks.requireAtLeast(p.visualCellsX, 1, "visual cells along x");
+  Checks.requireAtLeast(p.visualCellsY, 1, "visual cells along y");
+  Checks.requireAtLeast(p.visualCellsZ, 1, "visual cells along z");
+  Checks.requireAtLeast(p.collisionColumns, 1, "collision columns");
+  Checks.requireAtLeast(p.collisionRows, 1, "collision rows");
+  Checks.requireAtLeast(p.hexahedraX, 1, "hexahedra along x");
+  Checks.requireAtLeast(p.hexahedraY, 1, "hexahedra along y");
+  Checks.requireAtLeast(p.hexahedraZ, 1, "hexahedra along z");
 
   const double width = p.width;
   const double depth = p.depth;
