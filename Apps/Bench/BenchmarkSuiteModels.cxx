@@ -2,6 +2,7 @@
 // made its models by hand in 3ds Max; no figure to compare with).
 #include "BenchmarkRegistry.h"
 
+#include "KneeModels.h"
 #include "MeniscusModel.h"
 #include "SurgicalInstruments.h"
 #include "ThinSheetModel.h"
@@ -14,7 +15,7 @@ using namespace thintissue::bench;
 
 THINTISSUE_BENCHMARK_SUITE(modelsSuite,
   "models",
-  "procedural model generation: thesis sheets up to 1M triangles, meniscus, instruments")
+  "procedural model generation: thesis sheets up to 1M triangles, meniscus, knee, instruments")
 (const BenchmarkContext& context, BenchmarkReporter& reporter)
 {
   const int repetitions = context.quick ? 1 : 5;
@@ -40,6 +41,9 @@ THINTISSUE_BENCHMARK_SUITE(modelsSuite,
     reporter.report(
       std::string("meniscus, tear ") + meniscusTearTypeName(type), "time", seconds * 1e3, "ms");
   }
+  const double knee = medianSeconds([&] { makeKneeSurroundings(); }, context.quick ? 1 : 3);
+  reporter.report(
+    "knee surroundings (tibia, femur, cartilage, ACL, PCL)", "time", knee * 1e3, "ms");
   const double instruments = medianSeconds(
     [&]
     {
