@@ -239,7 +239,10 @@ ParametricSolid makeMeniscusSolid(const MeniscusParameters& p)
       cleavage.position = 0.5;
       cleavage.ranges = { { { tear.alongBegin, tear.alongEnd }, { 0.0, tear.across } } };
       cleavage.opening = tear.opening;
-      cleavage.influence = 0.5;
+      // The lower leaf stays on the tibia; the upper leaf lifts as a whole
+      // (its thickness, hence its collision radius, is kept).
+      cleavage.positiveShare = 1.0;
+      cleavage.influence = 1e6; // no fading: the whole leaf moves
       solid.addCrack(cleavage);
       break;
     }

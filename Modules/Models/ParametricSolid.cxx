@@ -137,10 +137,11 @@ void ParametricSolid::addCrack(const ParametricCrack& crack)
   {
     problem << "plane at " << crack.position << " is not strictly inside (0, 1)";
   }
-  else if (!(crack.opening >= 0.0) || !(crack.influence > 0.0))
+  else if (!(crack.opening >= 0.0) || !(crack.influence > 0.0) ||
+           !(crack.positiveShare >= 0.0 && crack.positiveShare <= 1.0))
   {
-    problem << "opening " << crack.opening << " or influence " << crack.influence
-            << " out of range";
+    problem << "opening " << crack.opening << ", influence " << crack.influence << " or share "
+            << crack.positiveShare << " out of range";
   }
   for (const auto& range : crack.ranges)
   {
@@ -258,7 +259,17 @@ Vector3 ParametricSolid::openedPoint(const ParameterPoint& p, const std::vector<
       continue;
     }
     const double fade = 1.0 - std::abs(offset) / crack.influence;
-    point += (0.5 * side * opening * fade) * direction(p, crack.normalAxis);
+    // A tear through the thickness opens across it, the same at every depth,
+    // so that the columns of material stay as they were (their thickness,
+    // hence the collision radius, is kept); a horizontal tear opens along w.
+    Vector3 opensAlong = direction(p, crack.normalAxis);
+    if (crack.normalAxis != 2)
+    {
+      const Vector3 through = direction(p, 2);
+      opensAlong = (opensAlong - opensAlong.dot(through) * through).normalized();
+    }
+    const double share = side > 0 ? crack.positiveShare : 1.0 - crack.positiveShare;
+    point += (side * share * opening * fade) * opensAlong;
   }
   return point;
 }

@@ -53,6 +53,10 @@ struct ParametricCrack
   /// the material beside the lips, fading linearly to zero; keeps the cells
   /// next to the lips from being crushed.
   double influence = 0.05;
+  /// Share of the opening taken by the lip on the + side (the rest by the
+  /// - side): 1/2 for a symmetric tear; 1 when the - side rests on
+  /// something (a cleaved meniscus's lower leaf lies on the tibia).
+  double positiveShare = 0.5;
 };
 
 /// Cells per parameter axis.

@@ -42,6 +42,36 @@ Lips lipsAt(const ParametricSolid& solid, std::size_t crack, const ParameterPoin
   return { negative, solid.openedPoint(p, sides) };
 }
 
+/// Points along every tear front (the inner ends of each crack's ranges).
+std::vector<Vector3> tearFrontPoints(const ParametricSolid& solid)
+{
+  std::vector<Vector3> points;
+  for (const auto& crack : solid.cracks())
+  {
+    const int axes[2] = { crack.normalAxis == 0 ? 1 : 0, crack.normalAxis == 2 ? 1 : 2 };
+    for (int r = 0; r < 2; ++r)
+    {
+      for (double end : crack.ranges[r])
+      {
+        if (end <= 0.0 || end >= 1.0)
+        {
+          continue; // a mouth, not a front
+        }
+        const auto& other = crack.ranges[1 - r];
+        for (int k = 0; k <= 100; ++k)
+        {
+          ParameterPoint p;
+          p[crack.normalAxis] = crack.position;
+          p[axes[r]] = end;
+          p[axes[1 - r]] = other[0] + (other[1] - other[0]) * k / 100.0;
+          points.push_back(solid.point(p));
+        }
+      }
+    }
+  }
+  return points;
+}
+
 /// A grid line along s inside (begin, end), nearest to its middle.
 double lineInside(const std::vector<double>& lines, double begin, double end)
 {
@@ -203,6 +233,26 @@ TEST(MeniscusModel, EveryTearIsInAllThreeMeshes)
     // vertex may lie up to their sagitta outside, where the embedding takes
     // the nearest hexahedron (4.3).
     EXPECT_TRUE(isNearHexahedra(m.collision.positions, m.simulation, 0.35));
+    // Each piece's (and each leaf's) radius is half its own thickness;
+    // exactly at a tear front (where the pieces join) thickness is ill-posed.
+    const auto fronts = tearFrontPoints(solid);
+    EXPECT_TRUE(radiiMatchHalfThickness(
+      m.collision,
+      m.collisionRadii(),
+      m.visual,
+      0.10,
+      [&](std::size_t v)
+      {
+        for (const auto& front : fronts)
+        {
+          if ((m.collision.positions[v] - front).norm() < 0.3)
+          {
+            return false;
+          }
+        }
+        return true;
+      },
+      [](std::size_t) { return Vector3::UnitZ(); }));
     const auto& tear = p.tear;
     const double across = tear.across;
     switch (type)
