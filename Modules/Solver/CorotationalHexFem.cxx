@@ -1,0 +1,706 @@
+#include "CorotationalHexFem.h"
+
+#include "ThinTissueError.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+namespace thintissue
+{
+
+namespace
+{
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+void checkSettings(const CorotationalHexFemSettings& s)
+{
+  std::ostringstream problem;
+  if (!(s.timeStep > 0.0) || !std::isfinite(s.timeStep))
+  {
+    problem << "time step must be positive (got " << s.timeStep << ")";
+  }
+  else if (!(s.rayleighMass >= 0.0) || !(s.rayleighStiffness >= 0.0) ||
+           !std::isfinite(s.rayleighMass) || !std::isfinite(s.rayleighStiffness))
+  {
+    problem << "Rayleigh damping coefficients must be finite and not negative (got "
+            << s.rayleighMass << ", " << s.rayleighStiffness << ")";
+  }
+  else if (!s.gravity.allFinite())
+  {
+    problem << "gravity must be finite";
+  }
+  else if (!(s.conjugateGradientTolerance > 0.0) || s.conjugateGradientMaxIterations < 1)
+  {
+    problem << "conjugate gradient tolerance and iteration limit must be positive";
+  }
+  if (problem.tellp() != 0)
+  {
+    throw InvalidInputError("co-rotational FEM settings: " + problem.str());
+  }
+}
+} // namespace
+
+/// The free-DOF system: numbering, upper-triangular pattern, where each
+/// element block lands in it, the solvers and work buffers (no allocation
+/// per step once the topology is set).
+struct CorotationalHexFem::LinearSystem
+{
+  std::vector<int> dofOfNode; // first DOF of a simulated node, else -1
+  int dofCount = 0;
+  SparseMatrix matrix; // upper triangle
+  /// Per element, block (a, b) entry (i, j) -> value index, or -1.
+  std::vector<std::array<int, 576>> elementOffsets;
+  std::vector<int> diagonalOffsets;
+  Eigen::VectorXd rhs;
+  Eigen::VectorXd solution;
+  Eigen::VectorXd previousSolution;
+  std::vector<Vector3> forces;
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> cholmod;
+  bool cholmodAnalysed = false;
+  Eigen::ConjugateGradient<SparseMatrix, Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+};
+
+CorotationalHexFem::CorotationalHexFem(const HexahedralMesh& mesh,
+  const LinearMaterial& material,
+  const CorotationalHexFemSettings& settings)
+  : RestPositions(mesh.nodes)
+  , Positions(mesh.nodes)
+  , Velocities(mesh.nodes.size(), Vector3::Zero())
+  , ExternalForces(mesh.nodes.size(), Vector3::Zero())
+  , Fixed(mesh.nodes.size(), 0)
+  , Settings(settings)
+  , System(std::make_unique<LinearSystem>())
+{
+  mesh.checkConsistency();
+  checkSettings(settings);
+  checkMaterial(material, "co-rotational FEM of '" + mesh.name + "'");
+  if (!mesh.fixedNodes.empty())
+  {
+    Fixed = mesh.fixedNodes;
+  }
+  Elements.reserve(mesh.hexahedronCount());
+  for (std::size_t h = 0; h < mesh.hexahedronCount(); ++h)
+  {
+    Elements.push_back(makeElement(mesh.hexahedra[h], material, h));
+  }
+  updateNodeMasses();
+}
+
+CorotationalHexFem::~CorotationalHexFem() = default;
+CorotationalHexFem::CorotationalHexFem(CorotationalHexFem&&) noexcept = default;
+CorotationalHexFem& CorotationalHexFem::operator=(CorotationalHexFem&&) noexcept = default;
+
+CorotationalHexFem::Element CorotationalHexFem::makeElement(const Hexahedron& nodes,
+  const LinearMaterial& material,
+  std::size_t index) const
+{
+  HexahedronCorners corners;
+  for (int k = 0; k < 8; ++k)
+  {
+    if (nodes[k] < 0 || static_cast<std::size_t>(nodes[k]) >= RestPositions.size())
+    {
+      throw InvalidInputError("co-rotational FEM: hexahedron " + std::to_string(index) +
+                              " refers to node " + std::to_string(nodes[k]) + ", out of range");
+    }
+    corners[k] = RestPositions[nodes[k]];
+  }
+  const std::string context = "co-rotational FEM, hexahedron " + std::to_string(index);
+  checkMaterial(material, context);
+  Element element;
+  element.nodes = nodes;
+  element.material = material;
+  element.rest = computeHexahedronRestState(corners, material, context);
+  return element;
+}
+
+void CorotationalHexFem::updateNodeMasses()
+{
+  NodeMasses.assign(RestPositions.size(), 0.0);
+  for (const auto& element : Elements)
+  {
+    if (!element.active)
+    {
+      continue;
+    }
+    for (int a = 0; a < 8; ++a)
+    {
+      NodeMasses[element.nodes[a]] += element.material.density * element.rest.shapeIntegrals[a];
+    }
+  }
+}
+
+std::size_t CorotationalHexFem::activeHexahedronCount() const
+{
+  return static_cast<std::size_t>(
+    std::count_if(Elements.begin(), Elements.end(), [](const Element& e) { return e.active; }));
+}
+
+void CorotationalHexFem::checkNode(std::size_t node, const char* what) const
+{
+  if (node >= Positions.size())
+  {
+    throw InvalidInputError(std::string("co-rotational FEM: ") + what + " of node " +
+                            std::to_string(node) + ", but there are " +
+                            std::to_string(Positions.size()) + " nodes");
+  }
+}
+
+void CorotationalHexFem::setPositions(const std::vector<Vector3>& positions)
+{
+  if (positions.size() != Positions.size() ||
+      !std::all_of(
+        positions.begin(), positions.end(), [](const Vector3& p) { return p.allFinite(); }))
+  {
+    throw InvalidInputError("co-rotational FEM: positions must be finite, one per node");
+  }
+  Positions = positions;
+}
+
+void CorotationalHexFem::setVelocities(const std::vector<Vector3>& velocities)
+{
+  if (velocities.size() != Velocities.size() ||
+      !std::all_of(
+        velocities.begin(), velocities.end(), [](const Vector3& v) { return v.allFinite(); }))
+  {
+    throw InvalidInputError("co-rotational FEM: velocities must be finite, one per node");
+  }
+  Velocities = velocities;
+}
+
+double CorotationalHexFem::kineticEnergy() const
+{
+  double energy = 0.0;
+  for (std::size_t n = 0; n < Velocities.size(); ++n)
+  {
+    energy += 0.5 * NodeMasses[n] * Velocities[n].squaredNorm();
+  }
+  return energy;
+}
+
+void CorotationalHexFem::setExternalForce(std::size_t node, const Vector3& force)
+{
+  checkNode(node, "external force");
+  if (!force.allFinite())
+  {
+    throw InvalidInputError(
+      "co-rotational FEM: external force on node " + std::to_string(node) + " is not finite");
+  }
+  ExternalForces[node] = force;
+}
+
+void CorotationalHexFem::clearExternalForces()
+{
+  std::fill(ExternalForces.begin(), ExternalForces.end(), Vector3::Zero());
+}
+
+void CorotationalHexFem::setFixed(std::size_t node, bool fixed)
+{
+  checkNode(node, "fixing");
+  if ((Fixed[node] != 0) != fixed)
+  {
+    Fixed[node] = fixed ? 1 : 0;
+    TopologyChanged = true;
+  }
+}
+
+void CorotationalHexFem::setSettings(const CorotationalHexFemSettings& settings)
+{
+  checkSettings(settings);
+  Settings = settings;
+}
+
+void CorotationalHexFem::setMaterial(std::size_t hexahedron, const LinearMaterial& material)
+{
+  if (hexahedron >= Elements.size())
+  {
+    throw InvalidInputError("co-rotational FEM: no hexahedron " + std::to_string(hexahedron));
+  }
+  const bool active = Elements[hexahedron].active;
+  Elements[hexahedron] = makeElement(Elements[hexahedron].nodes, material, hexahedron);
+  Elements[hexahedron].active = active;
+  updateNodeMasses();
+}
+
+std::size_t CorotationalHexFem::addNode(const Vector3& rest,
+  const Vector3& position,
+  const Vector3& velocity)
+{
+  if (!rest.allFinite() || !position.allFinite() || !velocity.allFinite())
+  {
+    throw InvalidInputError("co-rotational FEM: a new node must have finite coordinates");
+  }
+  RestPositions.push_back(rest);
+  Positions.push_back(position);
+  Velocities.push_back(velocity);
+  ExternalForces.push_back(Vector3::Zero());
+  Fixed.push_back(0);
+  NodeMasses.push_back(0.0);
+  return Positions.size() - 1;
+}
+
+std::size_t CorotationalHexFem::addHexahedron(const Hexahedron& nodes,
+  const LinearMaterial& material)
+{
+  Elements.push_back(makeElement(nodes, material, Elements.size()));
+  for (int a = 0; a < 8; ++a)
+  {
+    NodeMasses[nodes[a]] += material.density * Elements.back().rest.shapeIntegrals[a];
+  }
+  TopologyChanged = true;
+  return Elements.size() - 1;
+}
+
+void CorotationalHexFem::removeHexahedron(std::size_t h)
+{
+  if (h >= Elements.size())
+  {
+    throw InvalidInputError("co-rotational FEM: no hexahedron " + std::to_string(h));
+  }
+  if (!Elements[h].active)
+  {
+    return;
+  }
+  Elements[h].active = false;
+  for (int a = 0; a < 8; ++a)
+  {
+    NodeMasses[Elements[h].nodes[a]] -=
+      Elements[h].material.density * Elements[h].rest.shapeIntegrals[a];
+  }
+  TopologyChanged = true;
+}
+
+void CorotationalHexFem::replaceHexahedronNodes(std::size_t h, const Hexahedron& nodes)
+{
+  if (h >= Elements.size())
+  {
+    throw InvalidInputError("co-rotational FEM: no hexahedron " + std::to_string(h));
+  }
+  Element& element = Elements[h];
+  for (int a = 0; a < 8; ++a)
+  {
+    checkNode(static_cast<std::size_t>(std::max(nodes[a], 0)), "replacing a corner");
+    if (nodes[a] < 0 || (RestPositions[nodes[a]] - RestPositions[element.nodes[a]]).norm() >
+                          1e-9 * (1.0 + RestPositions[element.nodes[a]].norm()))
+    {
+      throw InvalidInputError(
+        "co-rotational FEM: hexahedron " + std::to_string(h) +
+        ": a replacement node must have the rest position of the node it replaces");
+    }
+  }
+  if (element.active)
+  {
+    for (int a = 0; a < 8; ++a)
+    {
+      const double mass = element.material.density * element.rest.shapeIntegrals[a];
+      NodeMasses[element.nodes[a]] -= mass;
+      NodeMasses[nodes[a]] += mass;
+    }
+  }
+  element.nodes = nodes;
+  TopologyChanged = true;
+}
+
+void CorotationalHexFem::prepareSystem()
+{
+  LinearSystem& s = *System;
+  if (!TopologyChanged)
+  {
+    return;
+  }
+  // Simulated nodes: free and used by an active hexahedron.
+  std::vector<std::uint8_t> used(Positions.size(), 0);
+  for (const auto& element : Elements)
+  {
+    if (element.active)
+    {
+      for (int node : element.nodes)
+      {
+        used[node] = 1;
+      }
+    }
+  }
+  s.dofOfNode.assign(Positions.size(), -1);
+  s.dofCount = 0;
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    if (used[n] && !Fixed[n])
+    {
+      s.dofOfNode[n] = s.dofCount;
+      s.dofCount += 3;
+    }
+  }
+  std::vector<Eigen::Triplet<double, int>> pattern;
+  pattern.reserve(Elements.size() * 300 + s.dofCount);
+  for (int d = 0; d < s.dofCount; ++d)
+  {
+    pattern.emplace_back(d, d, 0.0);
+  }
+  for (const auto& element : Elements)
+  {
+    if (!element.active)
+    {
+      continue;
+    }
+    for (int a = 0; a < 8; ++a)
+    {
+      for (int b = 0; b < 8; ++b)
+      {
+        const int ra = s.dofOfNode[element.nodes[a]];
+        const int cb = s.dofOfNode[element.nodes[b]];
+        if (ra < 0 || cb < 0)
+        {
+          continue;
+        }
+        for (int i = 0; i < 3; ++i)
+        {
+          for (int j = 0; j < 3; ++j)
+          {
+            if (ra + i <= cb + j)
+            {
+              pattern.emplace_back(ra + i, cb + j, 0.0);
+            }
+          }
+        }
+      }
+    }
+  }
+  s.matrix.resize(s.dofCount, s.dofCount);
+  s.matrix.setFromTriplets(pattern.begin(), pattern.end());
+  s.matrix.makeCompressed();
+  auto offsetOf = [&s](int row, int column)
+  {
+    const int* begin = s.matrix.innerIndexPtr() + s.matrix.outerIndexPtr()[column];
+    const int* end = s.matrix.innerIndexPtr() + s.matrix.outerIndexPtr()[column + 1];
+    const int* found = std::lower_bound(begin, end, row);
+    return static_cast<int>(found - s.matrix.innerIndexPtr());
+  };
+  s.diagonalOffsets.resize(s.dofCount);
+  for (int d = 0; d < s.dofCount; ++d)
+  {
+    s.diagonalOffsets[d] = offsetOf(d, d);
+  }
+  s.elementOffsets.resize(Elements.size());
+  for (std::size_t e = 0; e < Elements.size(); ++e)
+  {
+    auto& offsets = s.elementOffsets[e];
+    offsets.fill(-1);
+    if (!Elements[e].active)
+    {
+      continue;
+    }
+    for (int a = 0; a < 8; ++a)
+    {
+      for (int b = 0; b < 8; ++b)
+      {
+        const int ra = s.dofOfNode[Elements[e].nodes[a]];
+        const int cb = s.dofOfNode[Elements[e].nodes[b]];
+        if (ra < 0 || cb < 0)
+        {
+          continue;
+        }
+        for (int i = 0; i < 3; ++i)
+        {
+          for (int j = 0; j < 3; ++j)
+          {
+            if (ra + i <= cb + j)
+            {
+              offsets[(a * 8 + b) * 9 + i * 3 + j] = offsetOf(ra + i, cb + j);
+            }
+          }
+        }
+      }
+    }
+  }
+  s.rhs.resize(s.dofCount);
+  s.solution.setZero(s.dofCount);
+  s.previousSolution.setZero(s.dofCount);
+  s.forces.assign(Positions.size(), Vector3::Zero());
+  s.cholmodAnalysed = false;
+  TopologyChanged = false;
+}
+
+Eigen::Matrix3d CorotationalHexFem::currentRotation(const Element& element) const
+{
+  // Polar decomposition of the deformation gradient at the element centre.
+  if (!Settings.corotational)
+  {
+    return Eigen::Matrix3d::Identity();
+  }
+  Eigen::Matrix3d gradient = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < 8; ++a)
+  {
+    gradient += Positions[element.nodes[a]] * element.rest.centreGradients.col(a).transpose();
+  }
+  return polarRotation(gradient);
+}
+
+void CorotationalHexFem::assemble(double stiffnessScale,
+  double massScale,
+  double velocityStiffnessScale,
+  std::vector<Vector3>& forces)
+{
+  LinearSystem& s = *System;
+  std::fill(forces.begin(), forces.end(), Vector3::Zero());
+  double* values = s.matrix.valuePtr();
+  std::fill(values, values + s.matrix.nonZeros(), 0.0);
+  for (std::size_t e = 0; e < Elements.size(); ++e)
+  {
+    Element& element = Elements[e];
+    if (!element.active)
+    {
+      continue;
+    }
+    const Eigen::Matrix3d rotation = currentRotation(element);
+    element.rotation = rotation;
+    // Local displacement (and velocity, for the damping and implicit terms).
+    ElementVector local;
+    for (int a = 0; a < 8; ++a)
+    {
+      const int n = element.nodes[a];
+      local.segment<3>(3 * a) =
+        rotation.transpose() * (Positions[n] + velocityStiffnessScale * Velocities[n]) -
+        RestPositions[n];
+    }
+    const ElementVector localForce = element.rest.stiffness * local;
+    for (int a = 0; a < 8; ++a)
+    {
+      forces[element.nodes[a]] -= rotation * localForce.segment<3>(3 * a);
+    }
+    // Rotated stiffness blocks R K_ab R^T into the matrix.
+    const auto& offsets = s.elementOffsets[e];
+    for (int a = 0; a < 8; ++a)
+    {
+      for (int b = 0; b < 8; ++b)
+      {
+        const int* blockOffsets = offsets.data() + (a * 8 + b) * 9;
+        if (std::all_of(blockOffsets, blockOffsets + 9, [](int o) { return o < 0; }))
+        {
+          continue;
+        }
+        const Eigen::Matrix3d block = stiffnessScale * rotation *
+                                      element.rest.stiffness.block<3, 3>(3 * a, 3 * b) *
+                                      rotation.transpose();
+        for (int i = 0; i < 3; ++i)
+        {
+          for (int j = 0; j < 3; ++j)
+          {
+            if (blockOffsets[i * 3 + j] >= 0)
+            {
+              values[blockOffsets[i * 3 + j]] += block(i, j);
+            }
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    const int dof = s.dofOfNode[n];
+    if (dof >= 0)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        values[s.diagonalOffsets[dof + i]] += massScale * NodeMasses[n];
+      }
+    }
+  }
+}
+
+bool CorotationalHexFem::solveSystem(Eigen::VectorXd& solution,
+  int& iterations,
+  std::string& message)
+{
+  LinearSystem& s = *System;
+  iterations = 0;
+  if (Settings.solver == LinearSolverKind::Cholmod)
+  {
+    if (!s.cholmodAnalysed)
+    {
+      s.cholmod.analyzePattern(s.matrix);
+      s.cholmodAnalysed = true;
+    }
+    s.cholmod.factorize(s.matrix);
+    if (s.cholmod.info() != Eigen::Success)
+    {
+      message = "the system matrix is not positive definite (CHOLMOD factorization failed)";
+      return false;
+    }
+    solution = s.cholmod.solve(s.rhs);
+    iterations = 1;
+  }
+  else
+  {
+    s.cg.setTolerance(Settings.conjugateGradientTolerance);
+    s.cg.setMaxIterations(Settings.conjugateGradientMaxIterations);
+    s.cg.compute(s.matrix);
+    solution = s.cg.solveWithGuess(s.rhs, s.previousSolution);
+    iterations = static_cast<int>(s.cg.iterations());
+    if (s.cg.info() != Eigen::Success)
+    {
+      message = "conjugate gradient did not converge in " + std::to_string(iterations) +
+                " iterations (error " + std::to_string(s.cg.error()) + ")";
+      return false;
+    }
+  }
+  if (!solution.allFinite())
+  {
+    message = "the solution is not finite (NaN or infinity)";
+    return false;
+  }
+  return true;
+}
+
+SolverResult CorotationalHexFem::step()
+{
+  SolverResult result;
+  prepareSystem();
+  LinearSystem& s = *System;
+  if (s.dofCount == 0)
+  {
+    return result; // everything fixed: nothing moves
+  }
+  const double h = Settings.timeStep;
+  const double alpha = Settings.rayleighMass;
+  const double beta = Settings.rayleighStiffness;
+  // (M + h D + h^2 K) dv = h (f_ext - f_int - alpha M v - (beta + h) K v)
+  assemble(h * beta + h * h, 1.0 + h * alpha, beta + h, s.forces);
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    const int dof = s.dofOfNode[n];
+    if (dof >= 0)
+    {
+      s.rhs.segment<3>(dof) = h * (ExternalForces[n] + NodeMasses[n] * Settings.gravity +
+                                    s.forces[n] - alpha * NodeMasses[n] * Velocities[n]);
+    }
+  }
+  if (!s.rhs.allFinite())
+  {
+    result.ok = false;
+    result.message = "co-rotational FEM: the forces are not finite; the last good state is kept";
+    return result;
+  }
+  if (!solveSystem(s.solution, result.iterations, result.message))
+  {
+    result.ok = false;
+    result.message = "co-rotational FEM step: " + result.message + "; the last good state is kept";
+    return result;
+  }
+  // Never write a non-finite state: check the update before applying it.
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    const int dof = s.dofOfNode[n];
+    if (dof >= 0)
+    {
+      const Vector3 velocity = Velocities[n] + s.solution.segment<3>(dof);
+      if (!velocity.allFinite() || !(Positions[n] + h * velocity).allFinite())
+      {
+        result.ok = false;
+        result.message = "co-rotational FEM step: node " + std::to_string(n) +
+                         " would leave the finite range; the last good state is kept";
+        return result;
+      }
+    }
+  }
+  s.previousSolution = s.solution;
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    const int dof = s.dofOfNode[n];
+    if (dof >= 0)
+    {
+      Velocities[n] += s.solution.segment<3>(dof);
+      Positions[n] += h * Velocities[n];
+    }
+  }
+  return result;
+}
+
+SolverResult CorotationalHexFem::solveStatic(int maxIterations, double relativeTolerance)
+{
+  SolverResult result;
+  prepareSystem();
+  LinearSystem& s = *System;
+  if (s.dofCount == 0)
+  {
+    return result;
+  }
+  if (std::none_of(Fixed.begin(), Fixed.end(), [](std::uint8_t f) { return f != 0; }))
+  {
+    result.ok = false;
+    result.message = "co-rotational FEM static solve: no fixed node, the equilibrium is not unique";
+    return result;
+  }
+  const double scale = boundingBoxOf(RestPositions).diagonal().norm();
+  const std::vector<Vector3> start = Positions;
+  for (int iteration = 1; iteration <= maxIterations; ++iteration)
+  {
+    assemble(1.0, 0.0, 0.0, s.forces);
+    for (std::size_t n = 0; n < Positions.size(); ++n)
+    {
+      const int dof = s.dofOfNode[n];
+      if (dof >= 0)
+      {
+        s.rhs.segment<3>(dof) = ExternalForces[n] + NodeMasses[n] * Settings.gravity + s.forces[n];
+      }
+    }
+    if (!s.rhs.allFinite() || !solveSystem(s.solution, result.iterations, result.message))
+    {
+      Positions = start;
+      result.ok = false;
+      result.message =
+        "co-rotational FEM static solve: " +
+        (result.message.empty() ? std::string("forces are not finite") : result.message) +
+        "; the last good state is kept";
+      return result;
+    }
+    for (std::size_t n = 0; n < Positions.size(); ++n)
+    {
+      const int dof = s.dofOfNode[n];
+      if (dof >= 0)
+      {
+        Positions[n] += s.solution.segment<3>(dof);
+      }
+    }
+    result.iterations = iteration;
+    if (s.solution.norm() <= relativeTolerance * scale || !Settings.corotational)
+    {
+      return result; // linear FEM converges in one solve
+    }
+  }
+  result.ok = false;
+  result.message = "co-rotational FEM static solve: not converged in " +
+                   std::to_string(maxIterations) + " iterations";
+  return result;
+}
+
+std::vector<Vector3> CorotationalHexFem::elasticForces() const
+{
+  std::vector<Vector3> forces(Positions.size(), Vector3::Zero());
+  for (const auto& element : Elements)
+  {
+    if (!element.active)
+    {
+      continue;
+    }
+    const Eigen::Matrix3d rotation = currentRotation(element);
+    ElementVector local;
+    for (int a = 0; a < 8; ++a)
+    {
+      local.segment<3>(3 * a) =
+        rotation.transpose() * Positions[element.nodes[a]] - RestPositions[element.nodes[a]];
+    }
+    const ElementVector localForce = element.rest.stiffness * local;
+    for (int a = 0; a < 8; ++a)
+    {
+      forces[element.nodes[a]] += rotation * localForce.segment<3>(3 * a);
+    }
+  }
+  return forces;
+}
+
+} // namespace thintissue

@@ -1,0 +1,170 @@
+// Co-rotational linear FEM on hexahedra with implicit (backward) Euler
+// integration: the deformation model of the thesis (section 4.2, equations
+// 4-14 to 4-16), after Nesme et al. / SOFA's HexahedronFEMForceField.
+//
+// Each hexahedron keeps its rest stiffness K_e (2x2x2 Gauss); at every step
+// its rotation R is the polar decomposition of the deformation gradient at
+// its centre, the elastic force is f_e = R K_e (R^T x_e - X_e) and the
+// stiffness R K_e R^T. One linear system per step:
+//   (M + h D + h^2 K) dv = h (f_ext - f_int - D v - h K v),
+//   D = alpha M + beta K (Rayleigh), v += dv, x += h v,
+// on the free degrees of freedom (fixed nodes are Dirichlet and excluded).
+// The sparsity pattern is analysed once and again only after a topology
+// change (addHexahedron, removeHexahedron, replaceHexahedronNodes), which
+// touches just the affected elements: what cutting (5.3) needs.
+#ifndef CorotationalHexFem_h
+#define CorotationalHexFem_h
+
+#include "HexahedralMesh.h"
+#include "HexahedronElement.h"
+#include "ThinTissueSolverModule.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace thintissue
+{
+
+enum class LinearSolverKind
+{
+  /// Sparse Cholesky (CHOLMOD supernodal), pattern analysed once.
+  Cholmod,
+  /// Conjugate gradient with a Jacobi preconditioner, warm-started from the
+  /// previous step's velocity change.
+  ConjugateGradient
+};
+
+struct CorotationalHexFemSettings
+{
+  double timeStep = 0.01;
+  /// Rayleigh damping D = alpha M + beta K.
+  double rayleighMass = 0.1;
+  double rayleighStiffness = 0.01;
+  Vector3 gravity = Vector3::Zero();
+  /// false: plain linear FEM (R = I), for comparison.
+  bool corotational = true;
+  LinearSolverKind solver = LinearSolverKind::Cholmod;
+  double conjugateGradientTolerance = 1e-10;
+  int conjugateGradientMaxIterations = 1000;
+};
+
+/// Outcome of a step or a static solve. On failure the state is the last
+/// good one and `message` says what went wrong.
+struct SolverResult
+{
+  bool ok = true;
+  std::string message;
+  /// Linear solver iterations (CG) or Newton iterations (static solve).
+  int iterations = 0;
+};
+
+class THINTISSUESOLVER_EXPORT CorotationalHexFem
+{
+public:
+  /// Takes the mesh's nodes as rest and current positions and its fixed
+  /// nodes. Throws InvalidInputError on a bad mesh (index out of range,
+  /// inverted or degenerate hexahedron), material or settings.
+  CorotationalHexFem(const HexahedralMesh& mesh,
+    const LinearMaterial& material,
+    const CorotationalHexFemSettings& settings = {});
+  ~CorotationalHexFem();
+  CorotationalHexFem(CorotationalHexFem&&) noexcept;
+  CorotationalHexFem& operator=(CorotationalHexFem&&) noexcept;
+  CorotationalHexFem(const CorotationalHexFem&) = delete;
+  CorotationalHexFem& operator=(const CorotationalHexFem&) = delete;
+
+  // --- State -------------------------------------------------------------
+  std::size_t nodeCount() const { return Positions.size(); }
+  std::size_t hexahedronCount() const { return Elements.size(); }
+  std::size_t activeHexahedronCount() const;
+  const std::vector<Vector3>& restPositions() const { return RestPositions; }
+  const std::vector<Vector3>& positions() const { return Positions; }
+  const std::vector<Vector3>& velocities() const { return Velocities; }
+  /// Throws InvalidInputError on a wrong size or a non-finite value.
+  void setPositions(const std::vector<Vector3>& positions);
+  void setVelocities(const std::vector<Vector3>& velocities);
+  /// Lumped nodal masses (density times the shape-function integrals).
+  const std::vector<double>& nodeMasses() const { return NodeMasses; }
+  double kineticEnergy() const;
+
+  // --- Loads and constraints ---------------------------------------------
+  /// Throws InvalidInputError on an index out of range or a non-finite force.
+  void setExternalForce(std::size_t node, const Vector3& force);
+  void clearExternalForces();
+  const std::vector<Vector3>& externalForces() const { return ExternalForces; }
+  /// Fixed nodes keep their position (Dirichlet).
+  void setFixed(std::size_t node, bool fixed);
+  bool isFixed(std::size_t node) const { return Fixed[node] != 0; }
+  const CorotationalHexFemSettings& settings() const { return Settings; }
+  void setSettings(const CorotationalHexFemSettings& settings);
+  /// Per-hexahedron material (recomputes only that element).
+  void setMaterial(std::size_t hexahedron, const LinearMaterial& material);
+
+  // --- Simulation ----------------------------------------------------------
+  /// One implicit Euler step of length settings().timeStep.
+  SolverResult step();
+  /// Equilibrium under the external forces and gravity (Newton iterations
+  /// on the co-rotational force). Needs at least one fixed node.
+  SolverResult solveStatic(int maxIterations = 30, double relativeTolerance = 1e-10);
+  /// Elastic forces f_int at the current positions (zero for a rigid motion
+  /// of the rest shape), one per node.
+  std::vector<Vector3> elasticForces() const;
+
+  // --- Topology changes (cutting) -----------------------------------------
+  /// A new node at rest position `rest` (current position and velocity as
+  /// given); returns its index. Not simulated until a hexahedron uses it.
+  std::size_t addNode(const Vector3& rest, const Vector3& position, const Vector3& velocity);
+  /// A new hexahedron (VTK order); returns its index.
+  std::size_t addHexahedron(const Hexahedron& nodes, const LinearMaterial& material);
+  /// Removes hexahedron h from the simulation (indices stay valid).
+  void removeHexahedron(std::size_t h);
+  bool isActive(std::size_t h) const { return Elements[h].active; }
+  /// Points hexahedron h at other nodes with the same rest positions (the
+  /// duplicated nodes of a cut): its rest state is kept.
+  void replaceHexahedronNodes(std::size_t h, const Hexahedron& nodes);
+  const Hexahedron& hexahedronNodes(std::size_t h) const { return Elements[h].nodes; }
+
+private:
+  struct Element
+  {
+    Hexahedron nodes;
+    LinearMaterial material;
+    HexahedronRestState rest;
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    bool active = true;
+  };
+  struct LinearSystem;
+
+  void checkNode(std::size_t node, const char* what) const;
+  Element makeElement(const Hexahedron& nodes,
+    const LinearMaterial& material,
+    std::size_t index) const;
+  void updateNodeMasses();
+  /// R of the element at the current positions (identity for linear FEM).
+  Eigen::Matrix3d currentRotation(const Element& element) const;
+  void prepareSystem();
+  /// Rotations from the current positions; elastic (+ damping-stiffness)
+  /// force accumulated into `forces`; the stiffness scaled by `stiffnessScale`
+  /// and the masses by `massScale` assembled into the system matrix.
+  void assemble(double stiffnessScale,
+    double massScale,
+    double velocityStiffnessScale,
+    std::vector<Vector3>& forces);
+  bool solveSystem(Eigen::VectorXd& solution, int& iterations, std::string& message);
+
+  std::vector<Vector3> RestPositions;
+  std::vector<Vector3> Positions;
+  std::vector<Vector3> Velocities;
+  std::vector<Vector3> ExternalForces;
+  std::vector<std::uint8_t> Fixed;
+  std::vector<double> NodeMasses;
+  std::vector<Element> Elements;
+  CorotationalHexFemSettings Settings;
+  std::unique_ptr<LinearSystem> System;
+  bool TopologyChanged = true;
+};
+
+} // namespace thintissue
+
+#endif
