@@ -61,8 +61,12 @@ struct CorotationalHexFem::LinearSystem
   Eigen::VectorXd solution;
   Eigen::VectorXd previousSolution;
   std::vector<Vector3> forces;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> cholmod;
+  Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Upper> cholmod;
   bool cholmodAnalysed = false;
+  /// The factor is of the current matrix (not of an earlier step's).
+  bool factorValid = false;
+  int factorizations = 0;
+  Eigen::VectorXd residual, direction, preconditioned, product;
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
 };
 
@@ -422,6 +426,7 @@ void CorotationalHexFem::prepareSystem()
   s.previousSolution.setZero(s.dofCount);
   s.forces.assign(Positions.size(), Vector3::Zero());
   s.cholmodAnalysed = false;
+  s.factorValid = false;
   TopologyChanged = false;
 }
 
@@ -518,17 +523,20 @@ bool CorotationalHexFem::solveSystem(Eigen::VectorXd& solution,
 {
   LinearSystem& s = *System;
   iterations = 0;
-  if (Settings.solver == LinearSolverKind::Cholmod)
+  LinearSolverKind kind = Settings.solver;
+  if (kind == LinearSolverKind::Automatic)
   {
-    if (!s.cholmodAnalysed)
+    kind = s.dofCount <= AutomaticDirectLimit ? LinearSolverKind::StaleFactorConjugateGradient
+                                              : LinearSolverKind::ConjugateGradient;
+  }
+  if (kind == LinearSolverKind::StaleFactorConjugateGradient)
+  {
+    return solveWithStaleFactor(solution, iterations, message);
+  }
+  if (kind == LinearSolverKind::Cholmod)
+  {
+    if (!factorize(message))
     {
-      s.cholmod.analyzePattern(s.matrix);
-      s.cholmodAnalysed = true;
-    }
-    s.cholmod.factorize(s.matrix);
-    if (s.cholmod.info() != Eigen::Success)
-    {
-      message = "the system matrix is not positive definite (CHOLMOD factorization failed)";
       return false;
     }
     solution = s.cholmod.solve(s.rhs);
@@ -554,6 +562,74 @@ bool CorotationalHexFem::solveSystem(Eigen::VectorXd& solution,
     return false;
   }
   return true;
+}
+
+bool CorotationalHexFem::factorize(std::string& message)
+{
+  LinearSystem& s = *System;
+  if (!s.cholmodAnalysed)
+  {
+    s.cholmod.analyzePattern(s.matrix);
+    s.cholmodAnalysed = true;
+  }
+  s.cholmod.factorize(s.matrix);
+  ++s.factorizations;
+  s.factorValid = s.cholmod.info() == Eigen::Success;
+  if (!s.factorValid)
+  {
+    message = "the system matrix is not positive definite (CHOLMOD factorization failed)";
+  }
+  return s.factorValid;
+}
+
+bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
+  int& iterations,
+  std::string& message)
+{
+  // Preconditioned conjugate gradients (M^-1 = the last factor), started
+  // from the previous step's solution; refactorize and retry when the
+  // factor has gone too stale.
+  LinearSystem& s = *System;
+  const auto A = s.matrix.selfadjointView<Eigen::Upper>();
+  const double target = Settings.conjugateGradientTolerance * s.rhs.norm();
+  for (int attempt = 0; attempt < 2; ++attempt)
+  {
+    if (!s.factorValid && !factorize(message))
+    {
+      return false;
+    }
+    x = s.previousSolution;
+    s.product.noalias() = A * x;
+    s.residual = s.rhs - s.product;
+    s.preconditioned = s.cholmod.solve(s.residual);
+    s.direction = s.preconditioned;
+    double rho = s.residual.dot(s.preconditioned);
+    const int limit =
+      attempt == 0 ? Settings.refactorizationIterations : Settings.conjugateGradientMaxIterations;
+    for (iterations = 0; iterations < limit && s.residual.norm() > target; ++iterations)
+    {
+      s.product.noalias() = A * s.direction;
+      const double step = rho / s.direction.dot(s.product);
+      x += step * s.direction;
+      s.residual -= step * s.product;
+      s.preconditioned = s.cholmod.solve(s.residual);
+      const double next = s.residual.dot(s.preconditioned);
+      s.direction = s.preconditioned + (next / rho) * s.direction;
+      rho = next;
+    }
+    if (s.residual.norm() <= target)
+    {
+      if (!x.allFinite())
+      {
+        message = "the solution is not finite (NaN or infinity)";
+        return false;
+      }
+      return true;
+    }
+    s.factorValid = false; // too stale: factorize the current matrix
+  }
+  message = "preconditioned conjugate gradient did not converge";
+  return false;
 }
 
 SolverResult CorotationalHexFem::step()
@@ -676,6 +752,11 @@ SolverResult CorotationalHexFem::solveStatic(int maxIterations, double relativeT
   result.message = "co-rotational FEM static solve: not converged in " +
                    std::to_string(maxIterations) + " iterations";
   return result;
+}
+
+int CorotationalHexFem::factorizationCount() const
+{
+  return System->factorizations;
 }
 
 std::vector<Vector3> CorotationalHexFem::elasticForces() const

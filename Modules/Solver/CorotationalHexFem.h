@@ -28,12 +28,28 @@ namespace thintissue
 
 enum class LinearSolverKind
 {
-  /// Sparse Cholesky (CHOLMOD supernodal), pattern analysed once.
+  /// Sparse LDL^T (CHOLMOD, simplicial: with Debian's reference BLAS the
+  /// supernodal factorization is slower at these sizes), pattern analysed
+  /// once, refactorized every step.
   Cholmod,
   /// Conjugate gradient with a Jacobi preconditioner, warm-started from the
   /// previous step's velocity change.
-  ConjugateGradient
+  ConjugateGradient,
+  /// Conjugate gradient preconditioned by a CHOLMOD factorization of an
+  /// earlier step's matrix, refactorized only when the iterations exceed
+  /// `refactorizationIterations`: the rotations change little from step to
+  /// step, so a stale exact factor converges in a few iterations and the
+  /// factorization cost is paid rarely.
+  StaleFactorConjugateGradient,
+  /// StaleFactorConjugateGradient up to AutomaticDirectLimit degrees of
+  /// freedom (measured fastest there: `ThinTissueBench --suite fem`), Jacobi
+  /// conjugate gradients beyond, where factorizations grow too costly. The
+  /// default.
+  Automatic
 };
+
+/// Degrees of freedom up to which Automatic factorizes.
+constexpr int AutomaticDirectLimit = 15000;
 
 struct CorotationalHexFemSettings
 {
@@ -44,9 +60,12 @@ struct CorotationalHexFemSettings
   Vector3 gravity = Vector3::Zero();
   /// false: plain linear FEM (R = I), for comparison.
   bool corotational = true;
-  LinearSolverKind solver = LinearSolverKind::Cholmod;
-  double conjugateGradientTolerance = 1e-10;
+  LinearSolverKind solver = LinearSolverKind::Automatic;
+  /// Relative residual at which conjugate gradients stop.
+  double conjugateGradientTolerance = 1e-8;
   int conjugateGradientMaxIterations = 1000;
+  /// StaleFactorConjugateGradient refactorizes when a solve needed more.
+  int refactorizationIterations = 6;
 };
 
 /// Outcome of a step or a static solve. On failure the state is the last
@@ -110,6 +129,9 @@ public:
   /// Elastic forces f_int at the current positions (zero for a rigid motion
   /// of the rest shape), one per node.
   std::vector<Vector3> elasticForces() const;
+  /// Sparse factorizations done so far (the stale-factor solver reuses one
+  /// across many steps).
+  int factorizationCount() const;
 
   // --- Topology changes (cutting) -----------------------------------------
   /// A new node at rest position `rest` (current position and velocity as
@@ -152,6 +174,8 @@ private:
     double velocityStiffnessScale,
     std::vector<Vector3>& forces);
   bool solveSystem(Eigen::VectorXd& solution, int& iterations, std::string& message);
+  bool factorize(std::string& message);
+  bool solveWithStaleFactor(Eigen::VectorXd& solution, int& iterations, std::string& message);
 
   std::vector<Vector3> RestPositions;
   std::vector<Vector3> Positions;

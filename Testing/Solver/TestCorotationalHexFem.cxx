@@ -316,26 +316,38 @@ TEST(CorotationalHexFem, MeniscusMaterialIsStableFor10000Steps)
   EXPECT_LT(largest, 20.0); // and stays bounded
 }
 
-TEST(CorotationalHexFem, CholmodAndConjugateGradientAgree)
+TEST(CorotationalHexFem, AllLinearSolversAgreeAndTheStaleFactorIsReused)
 {
   const HexahedralMesh mesh = beam(8, 2, 2, 8.0, 1.0);
-  CorotationalHexFemSettings settings;
-  CorotationalHexFem direct(mesh, material(1.0e4, 0.3), settings);
-  settings.solver = LinearSolverKind::ConjugateGradient;
-  CorotationalHexFem iterative(mesh, material(1.0e4, 0.3), settings);
-  for (auto* fem : { &direct, &iterative })
+  std::vector<CorotationalHexFem> fems;
+  for (auto kind : { LinearSolverKind::Cholmod,
+         LinearSolverKind::ConjugateGradient,
+         LinearSolverKind::StaleFactorConjugateGradient,
+         LinearSolverKind::Automatic })
   {
-    clampLeftEnd(*fem);
-    loadRightEnd(*fem, 8.0, Vector3(0.0, 0.0, -20.0));
-    for (int k = 0; k < 30; ++k)
+    CorotationalHexFemSettings settings;
+    settings.solver = kind;
+    fems.emplace_back(mesh, material(1.0e4, 0.3), settings);
+  }
+  const int steps = 40;
+  for (auto& fem : fems)
+  {
+    clampLeftEnd(fem);
+    loadRightEnd(fem, 8.0, Vector3(0.0, 0.0, -20.0));
+    for (int k = 0; k < steps; ++k)
     {
-      ASSERT_TRUE(fem->step().ok);
+      ASSERT_TRUE(fem.step().ok);
     }
   }
-  for (std::size_t n = 0; n < mesh.nodeCount(); ++n)
+  for (std::size_t f = 1; f < fems.size(); ++f)
   {
-    EXPECT_LT((direct.positions()[n] - iterative.positions()[n]).norm(), 1e-6);
+    for (std::size_t n = 0; n < mesh.nodeCount(); ++n)
+    {
+      EXPECT_LT((fems[0].positions()[n] - fems[f].positions()[n]).norm(), 1e-6) << "solver " << f;
+    }
   }
+  EXPECT_EQ(fems[0].factorizationCount(), steps);
+  EXPECT_LT(fems[2].factorizationCount(), steps / 2); // reused across steps
 }
 
 TEST(CorotationalHexFem, FreeBodyIsLegalAndStable)
