@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace thintissue;
@@ -209,6 +210,7 @@ TEST(CorotationalHexFem, LargeLoadKeepsLengthAndVolumeWhereLinearFemInflates)
   const double length = 10.0;
   const HexahedralMesh mesh = beam(40, 2, 2, length, 1.0);
   const double restVolume = 10.0;
+  std::vector<double> lengths;
   auto solve = [&](bool corotational)
   {
     CorotationalHexFemSettings settings;
@@ -228,10 +230,30 @@ TEST(CorotationalHexFem, LargeLoadKeepsLengthAndVolumeWhereLinearFemInflates)
       }
     }
     EXPECT_TRUE(result.ok) << result.message;
+    // Length of the deformed centre line (nodes at y = z = 1/2, by x).
+    std::vector<std::pair<double, Vector3>> centre;
+    for (std::size_t n = 0; n < fem.nodeCount(); ++n)
+    {
+      const Vector3& rest = fem.restPositions()[n];
+      if (std::abs(rest.y() - 0.5) < 1e-9 && std::abs(rest.z() - 0.5) < 1e-9)
+      {
+        centre.emplace_back(rest.x(), fem.positions()[n]);
+      }
+    }
+    std::sort(
+      centre.begin(), centre.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    double centreLength = 0.0;
+    for (std::size_t k = 1; k < centre.size(); ++k)
+    {
+      centreLength += (centre[k].second - centre[k - 1].second).norm();
+    }
+    lengths.push_back(centreLength);
     return std::pair<double, double>(currentVolume(fem), -meanTipDeflection(fem, length));
   };
   const auto [corotationalVolume, corotationalDeflection] = solve(true);
   const auto [linearVolume, linearDeflection] = solve(false);
+  EXPECT_NEAR(lengths[0], length, 0.02 * length); // co-rotational keeps its length
+  EXPECT_GT(lengths[1], 1.05 * length);           // linear FEM stretches
   EXPECT_GT(linearDeflection, 0.3 * length);
   EXPECT_GT(corotationalDeflection, 0.1 * length);
   EXPECT_LT(corotationalDeflection, linearDeflection); // no spurious stretch
