@@ -23,26 +23,15 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include "ThinTissueVtkErrorObserver.h"
+
 #include <gtest/gtest.h>
 
 #include <sstream>
 
 namespace
 {
-/// Turns vtkErrorMacro output into a counter instead of console noise.
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void* message) override
-  {
-    ++count;
-    all += static_cast<const char*>(message);
-    all += "\n";
-  }
-  int count = 0;
-  std::string all;
-};
+using thintissue::testing::ErrorCounter;
 
 std::string blockName(vtkMultiBlockDataSet* all, unsigned int b)
 {
