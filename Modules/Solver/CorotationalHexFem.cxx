@@ -271,6 +271,15 @@ void CorotationalHexFem::removeHexahedron(std::size_t h)
     return;
   }
   Elements[h].active = false;
+  // Contacts on it have lost their carrier.
+  for (std::size_t k = Contacts.size(); k-- > 0;)
+  {
+    if (Contacts[k].hexahedron == h)
+    {
+      Contacts.erase(Contacts.begin() + static_cast<std::ptrdiff_t>(k));
+      ContactForces.erase(ContactForces.begin() + static_cast<std::ptrdiff_t>(k));
+    }
+  }
   for (int a = 0; a < 8; ++a)
   {
     NodeMasses[Elements[h].nodes[a]] -=
@@ -564,6 +573,71 @@ bool CorotationalHexFem::solveSystem(Eigen::VectorXd& solution,
   return true;
 }
 
+void CorotationalHexFem::setContacts(const std::vector<EmbeddedContact>& contacts)
+{
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+  {
+    const EmbeddedContact& c = contacts[k];
+    const bool valid = c.hexahedron < Elements.size() && Elements[c.hexahedron].active &&
+                       c.local.allFinite() && c.normal.allFinite() &&
+                       std::abs(c.normal.norm() - 1.0) < 1e-6 && std::isfinite(c.depth) &&
+                       c.stiffness >= 0.0 && std::isfinite(c.stiffness) && c.damping >= 0.0 &&
+                       std::isfinite(c.damping);
+    if (!valid)
+    {
+      throw InvalidInputError(
+        "co-rotational FEM: contact " + std::to_string(k) +
+        " is invalid (hexahedron out of range or inactive, normal not unit, negative or "
+        "non-finite stiffness, damping or depth)");
+    }
+  }
+  Contacts = contacts;
+  ContactForces.assign(Contacts.size(), Vector3::Zero());
+}
+
+void CorotationalHexFem::assembleContacts(double h)
+{
+  LinearSystem& s = *System;
+  double* values = s.matrix.valuePtr();
+  for (const EmbeddedContact& c : Contacts)
+  {
+    const Element& element = Elements[c.hexahedron];
+    const auto weights = trilinearWeights(c.local);
+    Vector3 velocity = Vector3::Zero();
+    for (int a = 0; a < 8; ++a)
+    {
+      velocity += weights[a] * Velocities[element.nodes[a]];
+    }
+    const double implicitDamping = h * c.stiffness + c.damping;
+    const Vector3 force =
+      (c.stiffness * c.depth - implicitDamping * c.normal.dot(velocity)) * c.normal;
+    const Eigen::Matrix3d block = (h * implicitDamping) * c.normal * c.normal.transpose();
+    const auto& offsets = s.elementOffsets[c.hexahedron];
+    for (int a = 0; a < 8; ++a)
+    {
+      const int dof = s.dofOfNode[element.nodes[a]];
+      if (dof >= 0)
+      {
+        s.rhs.segment<3>(dof) += h * weights[a] * force;
+      }
+      for (int b = 0; b < 8; ++b)
+      {
+        const int* blockOffsets = offsets.data() + (a * 8 + b) * 9;
+        for (int i = 0; i < 3; ++i)
+        {
+          for (int j = 0; j < 3; ++j)
+          {
+            if (blockOffsets[i * 3 + j] >= 0)
+            {
+              values[blockOffsets[i * 3 + j]] += weights[a] * weights[b] * block(i, j);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 bool CorotationalHexFem::factorize(std::string& message)
 {
   LinearSystem& s = *System;
@@ -655,6 +729,7 @@ SolverResult CorotationalHexFem::step()
                                     s.forces[n] - alpha * NodeMasses[n] * Velocities[n]);
     }
   }
+  assembleContacts(h);
   if (!s.rhs.allFinite())
   {
     result.ok = false;
@@ -692,6 +767,19 @@ SolverResult CorotationalHexFem::step()
       Velocities[n] += s.solution.segment<3>(dof);
       Positions[n] += h * Velocities[n];
     }
+  }
+  // The contact forces as the implicit step applied them (end velocity).
+  for (std::size_t k = 0; k < Contacts.size(); ++k)
+  {
+    const EmbeddedContact& c = Contacts[k];
+    const auto weights = trilinearWeights(c.local);
+    Vector3 velocity = Vector3::Zero();
+    for (int a = 0; a < 8; ++a)
+    {
+      velocity += weights[a] * Velocities[Elements[c.hexahedron].nodes[a]];
+    }
+    ContactForces[k] =
+      (c.stiffness * c.depth - (h * c.stiffness + c.damping) * c.normal.dot(velocity)) * c.normal;
   }
   return result;
 }

@@ -68,6 +68,26 @@ struct CorotationalHexFemSettings
   int refactorizationIterations = 6;
 };
 
+/// A penalty contact on a point embedded in a hexahedron (thesis 5.1,
+/// response): the point x_p = sum_a w_a x_a is pushed along `normal` by
+///   F = stiffness * depth * n - (h * stiffness + damping) (n . v_p) n,
+/// the spring and damper linearised into the implicit step (their stiffness
+/// w_a w_b k n n^T enters the system matrix) so that stiff contact stays
+/// stable at large time steps. Weights come from the collision-simulation
+/// embedding (trilinear, HexahedralEmbedding); F goes up with H^T.
+struct EmbeddedContact
+{
+  std::size_t hexahedron = 0;
+  /// Trilinear local coordinates of the point in the hexahedron.
+  Vector3 local = Vector3::Constant(0.5);
+  /// Unit direction the tissue is pushed (away from the other body).
+  Vector3 normal = Vector3::UnitZ();
+  /// Penetration at the current positions (> 0 pushes).
+  double depth = 0.0;
+  double stiffness = 0.0;
+  double damping = 0.0;
+};
+
 /// Outcome of a step or a static solve. On failure the state is the last
 /// good one and `message` says what went wrong.
 struct SolverResult
@@ -119,6 +139,16 @@ public:
   void setSettings(const CorotationalHexFemSettings& settings);
   /// Per-hexahedron material (recomputes only that element).
   void setMaterial(std::size_t hexahedron, const LinearMaterial& material);
+
+  /// Contacts for the next step (replacing the previous ones). Throws
+  /// InvalidInputError on a hexahedron out of range, a non-unit normal, a
+  /// negative stiffness or damping, or non-finite values.
+  void setContacts(const std::vector<EmbeddedContact>& contacts);
+  const std::vector<EmbeddedContact>& contacts() const { return Contacts; }
+  /// The force each contact applied in the last step (the implicit one, at
+  /// the end-of-step velocity): equal and opposite to what the other body
+  /// (a tool) receives.
+  const std::vector<Vector3>& contactForces() const { return ContactForces; }
 
   // --- Simulation ----------------------------------------------------------
   /// One implicit Euler step of length settings().timeStep.
@@ -176,6 +206,8 @@ private:
   bool solveSystem(Eigen::VectorXd& solution, int& iterations, std::string& message);
   bool factorize(std::string& message);
   bool solveWithStaleFactor(Eigen::VectorXd& solution, int& iterations, std::string& message);
+  /// Adds the linearised contacts to the matrix and the right-hand side.
+  void assembleContacts(double h);
 
   std::vector<Vector3> RestPositions;
   std::vector<Vector3> Positions;
@@ -184,6 +216,8 @@ private:
   std::vector<std::uint8_t> Fixed;
   std::vector<double> NodeMasses;
   std::vector<Element> Elements;
+  std::vector<EmbeddedContact> Contacts;
+  std::vector<Vector3> ContactForces;
   CorotationalHexFemSettings Settings;
   std::unique_ptr<LinearSystem> System;
   bool TopologyChanged = true;
