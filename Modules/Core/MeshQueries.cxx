@@ -1,5 +1,7 @@
 #include "MeshQueries.h"
 
+#include "ProximityQueries.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -30,47 +32,7 @@ Vector3 closestPointOnTriangle(const Vector3& p,
   const Vector3& b,
   const Vector3& c)
 {
-  // Voronoi-region walk (Ericson, Real-Time Collision Detection, 5.1.5).
-  const Vector3 ab = b - a;
-  const Vector3 ac = c - a;
-  const Vector3 ap = p - a;
-  const double d1 = ab.dot(ap);
-  const double d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0)
-  {
-    return a;
-  }
-  const Vector3 bp = p - b;
-  const double d3 = ab.dot(bp);
-  const double d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3)
-  {
-    return b;
-  }
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
-  {
-    return a + ab * (d1 / (d1 - d3));
-  }
-  const Vector3 cp = p - c;
-  const double d5 = ab.dot(cp);
-  const double d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6)
-  {
-    return c;
-  }
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
-  {
-    return a + ac * (d2 / (d2 - d6));
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
-  {
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  }
-  const double denominator = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denominator) + ac * (vc * denominator);
+  return closestPointOnTriangleWithBarycentric(p, a, b, c).point;
 }
 
 double distanceToSurface(const TriangleMesh& mesh, const Vector3& point)
