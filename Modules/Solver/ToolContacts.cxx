@@ -1,0 +1,107 @@
+#include "ToolContacts.h"
+
+#include "ProximityQueries.h"
+#include "ThinTissueError.h"
+
+namespace thintissue
+{
+
+DeformableCollisionMesh::DeformableCollisionMesh(const TriangleMesh& collision,
+  const HexahedralMesh& hexahedra,
+  double contactDistance)
+  : Triangles(collision.triangles)
+  , Radii(collision.pointAttributes.has("Radius")
+            ? collision.pointAttributes.get("Radius").values
+            : std::vector<double>(collision.vertexCount(), 0.0))
+  , Embedding(hexahedra, collision.positions)
+  , Positions(collision.positions)
+  , ContactDistance(contactDistance)
+{
+  if (!(contactDistance >= 0.0))
+  {
+    throw InvalidInputError("collision mesh '" + collision.name + "': negative contact distance");
+  }
+  Bvh.build(Positions, Triangles, Radii, ContactDistance);
+}
+
+void DeformableCollisionMesh::update(const std::vector<Vector3>& nodePositions)
+{
+  Embedding.mapPositions(nodePositions, Positions);
+  Bvh.refit(Positions, Radii);
+}
+
+void findToolContacts(const DeformableCollisionMesh& tissue,
+  const std::vector<ToolCapsule>& tool,
+  double stiffness,
+  double damping,
+  std::vector<EmbeddedContact>& embedded,
+  std::vector<ToolContact>& contacts)
+{
+  const auto& positions = tissue.positions();
+  const auto& radii = tissue.radii();
+  const auto& embedding = tissue.embedding();
+  for (const ToolCapsule& capsule : tool)
+  {
+    BoundingBox query(capsule.start);
+    query.extend(capsule.end);
+    query.min().array() -= capsule.radius;
+    query.max().array() += capsule.radius;
+    // The deepest overlap of this capsule: one contact per capsule, so the
+    // force does not grow with the collision mesh's resolution.
+    SegmentTriangleContact deepest;
+    int deepestTriangle = -1;
+    tissue.bvh().forEachOverlap(query,
+      [&](int t)
+      {
+        const Triangle& tri = tissue.triangles()[t];
+        const SegmentTriangleContact c = segmentTriangleContact(capsule.start,
+          capsule.end,
+          capsule.radius,
+          positions[tri[0]],
+          positions[tri[1]],
+          positions[tri[2]],
+          radii[tri[0]],
+          radii[tri[1]],
+          radii[tri[2]],
+          0.0);
+        if (c.penetrating() && (deepestTriangle < 0 || c.depth > deepest.depth))
+        {
+          deepest = c;
+          deepestTriangle = t;
+        }
+      });
+    if (deepestTriangle < 0)
+    {
+      continue;
+    }
+    ToolContact contact;
+    contact.point = deepest.trianglePoint;
+    contact.normal = deepest.normal;
+    contact.depth = deepest.depth;
+    contact.stiffness = stiffness;
+    contact.triangle = deepestTriangle;
+    contact.side = deepest.side;
+    contacts.push_back(contact);
+    // The tissue is pushed away from the tool (along -normal), the spring
+    // spread over the triangle's vertices by their barycentric weights.
+    const Triangle& tri = tissue.triangles()[deepestTriangle];
+    for (int k = 0; k < 3; ++k)
+    {
+      const double share = deepest.barycentric[k];
+      if (share <= 0.0)
+      {
+        continue;
+      }
+      EmbeddedContact spring;
+      spring.hexahedron = static_cast<std::size_t>(embedding.hexahedron(tri[k]));
+      spring.local = embedding.localCoordinates(tri[k]);
+      spring.normal = -deepest.normal;
+      spring.depth = deepest.depth;
+      spring.stiffness = share * stiffness;
+      spring.damping = share * damping;
+      embedded.push_back(spring);
+    }
+  }
+}
+
+} // namespace thintissue

@@ -1,0 +1,85 @@
+// Contacts between a rigid tool made of capsules (centre-line segments with
+// a radius: the thesis replaces the tool's collision mesh by its centre line,
+// 6.3, table 6-2) and a deformable collision mesh with radii whose vertices
+// are embedded in the hexahedra (thesis 5.1, 4.3). The result feeds
+// CorotationalHexFem::setContacts.
+#ifndef ToolContacts_h
+#define ToolContacts_h
+
+#include "CorotationalHexFem.h"
+#include "HexahedralEmbedding.h"
+#include "ThinTissueSolverModule.h"
+#include "TriangleBvh.h"
+
+#include <vector>
+
+namespace thintissue
+{
+
+/// A capsule of a tool, in world coordinates for the current pose.
+struct ToolCapsule
+{
+  Vector3 start = Vector3::Zero(); ///< the handle side: a crossing pushes back toward it
+  Vector3 end = Vector3::Zero();
+  double radius = 0.0;
+};
+
+/// One contact of the tool with the tissue, for the tool's reaction and the
+/// haptic loop (point, normal, depth, stiffness: enough to extrapolate the
+/// force between physics steps).
+struct ToolContact
+{
+  Vector3 point = Vector3::Zero();   ///< on the tissue's mid-surface
+  Vector3 normal = Vector3::UnitZ(); ///< unit, from the tissue toward the tool
+  double depth = 0.0;                ///< overlap of the radii
+  double stiffness = 0.0;
+  int triangle = -1;
+  int side = 1; ///< side of the collision triangle touched (lower surface: -1)
+};
+
+/// The collision mesh of a tissue: triangles with per-vertex radii, vertices
+/// embedded in the simulation hexahedra, positions and BVH refreshed from
+/// the node positions each step (cost linear in the collision mesh).
+class THINTISSUESOLVER_EXPORT DeformableCollisionMesh
+{
+public:
+  /// `collision` holds rest positions, triangles and the "Radius" array
+  /// (zero radii when absent); `hexahedra` the rest simulation mesh.
+  DeformableCollisionMesh(const TriangleMesh& collision,
+    const HexahedralMesh& hexahedra,
+    double contactDistance = 0.0);
+  /// x = H u, then a BVH refit. No allocation.
+  void update(const std::vector<Vector3>& nodePositions);
+  const std::vector<Vector3>& positions() const { return Positions; }
+  const std::vector<Triangle>& triangles() const { return Triangles; }
+  const std::vector<double>& radii() const { return Radii; }
+  const HexahedralEmbedding& embedding() const { return Embedding; }
+  const TriangleBvh& bvh() const { return Bvh; }
+  double contactDistance() const { return ContactDistance; }
+
+private:
+  std::vector<Triangle> Triangles;
+  std::vector<double> Radii;
+  HexahedralEmbedding Embedding;
+  std::vector<Vector3> Positions;
+  TriangleBvh Bvh;
+  double ContactDistance = 0.0;
+};
+
+/// Penalty contacts of the capsules with the tissue: for each capsule its
+/// deepest overlap with the thick collision triangles (one contact per
+/// capsule, so the force does not depend on the mesh resolution), spread to
+/// the triangle's three vertices by their barycentric weights (each an
+/// EmbeddedContact with that share of `stiffness` and `damping`, so the
+/// springs sum to the full one).
+/// Appends to `embedded` (for the FEM) and `contacts` (for the tool).
+THINTISSUESOLVER_EXPORT void findToolContacts(const DeformableCollisionMesh& tissue,
+  const std::vector<ToolCapsule>& tool,
+  double stiffness,
+  double damping,
+  std::vector<EmbeddedContact>& embedded,
+  std::vector<ToolContact>& contacts);
+
+} // namespace thintissue
+
+#endif
