@@ -104,4 +104,83 @@ void findToolContacts(const DeformableCollisionMesh& tissue,
   }
 }
 
+StaticObstacle::StaticObstacle(const TriangleMesh& surface, double contactDistance)
+  : Surface(surface)
+  , Radii(surface.pointAttributes.has("Radius") ? surface.pointAttributes.get("Radius").values
+                                                : std::vector<double>(surface.vertexCount(), 0.0))
+{
+  Bvh.build(Surface.positions, Surface.triangles, Radii, contactDistance);
+}
+
+void findObstacleContacts(const DeformableCollisionMesh& tissue,
+  const StaticObstacle& obstacle,
+  double stiffness,
+  double damping,
+  std::vector<EmbeddedContact>& embedded,
+  std::vector<ObstacleContact>& contacts)
+{
+  const auto& positions = tissue.positions();
+  const auto& radii = tissue.radii();
+  const TriangleMesh& surface = obstacle.surface();
+  // Vertex normals of the deformed collision mesh: which side touches
+  // (a buffer reused across calls: no allocation per step).
+  thread_local std::vector<Vector3> vertexNormals;
+  vertexNormals.assign(positions.size(), Vector3::Zero());
+  for (const Triangle& t : tissue.triangles())
+  {
+    const Vector3 n = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+    for (int k = 0; k < 3; ++k)
+    {
+      vertexNormals[t[k]] += n;
+    }
+  }
+  for (std::size_t v = 0; v < positions.size(); ++v)
+  {
+    BoundingBox query(positions[v]);
+    query.min().array() -= radii[v];
+    query.max().array() += radii[v];
+    PointTriangleContact deepest;
+    int deepestTriangle = -1;
+    obstacle.bvh().forEachOverlap(query,
+      [&](int t)
+      {
+        const Triangle& tri = surface.triangles[t];
+        const PointTriangleContact c = pointTriangleContact(positions[v],
+          radii[v],
+          surface.positions[tri[0]],
+          surface.positions[tri[1]],
+          surface.positions[tri[2]],
+          obstacle.radii()[tri[0]],
+          obstacle.radii()[tri[1]],
+          obstacle.radii()[tri[2]],
+          0.0);
+        if (c.penetrating() && (deepestTriangle < 0 || c.depth > deepest.depth))
+        {
+          deepest = c;
+          deepestTriangle = t;
+        }
+      });
+    if (deepestTriangle < 0)
+    {
+      continue;
+    }
+    ObstacleContact contact;
+    contact.vertex = static_cast<int>(v);
+    contact.triangle = deepestTriangle;
+    contact.point = deepest.trianglePoint;
+    contact.normal = deepest.normal;
+    contact.depth = deepest.depth;
+    contact.tissueSide = vertexNormals[v].dot(deepest.normal) > 0.0 ? -1 : 1;
+    contacts.push_back(contact);
+    EmbeddedContact spring;
+    spring.hexahedron = static_cast<std::size_t>(tissue.embedding().hexahedron(v));
+    spring.local = tissue.embedding().localCoordinates(v);
+    spring.normal = deepest.normal;
+    spring.depth = deepest.depth;
+    spring.stiffness = stiffness;
+    spring.damping = damping;
+    embedded.push_back(spring);
+  }
+}
+
 } // namespace thintissue

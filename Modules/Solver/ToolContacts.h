@@ -80,6 +80,46 @@ THINTISSUESOLVER_EXPORT void findToolContacts(const DeformableCollisionMesh& tis
   std::vector<EmbeddedContact>& embedded,
   std::vector<ToolContact>& contacts);
 
+/// A rigid obstacle (bone, cartilage treated as rigid, 5.4.4): a closed or
+/// open triangle mesh, optionally with radii, and its BVH.
+class THINTISSUESOLVER_EXPORT StaticObstacle
+{
+public:
+  explicit StaticObstacle(const TriangleMesh& surface, double contactDistance = 0.0);
+  const TriangleMesh& surface() const { return Surface; }
+  const std::vector<double>& radii() const { return Radii; }
+  const TriangleBvh& bvh() const { return Bvh; }
+
+private:
+  TriangleMesh Surface;
+  std::vector<double> Radii;
+  TriangleBvh Bvh;
+};
+
+/// A tissue vertex pressing on an obstacle.
+struct ObstacleContact
+{
+  int vertex = -1;                   ///< collision vertex of the tissue
+  int triangle = -1;                 ///< triangle of the obstacle
+  Vector3 point = Vector3::Zero();   ///< on the obstacle
+  Vector3 normal = Vector3::UnitZ(); ///< unit, from the obstacle toward the tissue
+  double depth = 0.0;
+  /// Side of the tissue that touches: -1 when the obstacle lies on the
+  /// negative side of the collision mesh (the meniscus's lower surface on
+  /// the tibia; the wrinkles count these, 4.4), +1 otherwise.
+  int tissueSide = 1;
+};
+
+/// Penalty contacts of the tissue's collision vertices (spheres of their
+/// radius) with the obstacle: per vertex the deepest overlap, one
+/// EmbeddedContact each. Appends to `embedded` and `contacts`.
+THINTISSUESOLVER_EXPORT void findObstacleContacts(const DeformableCollisionMesh& tissue,
+  const StaticObstacle& obstacle,
+  double stiffness,
+  double damping,
+  std::vector<EmbeddedContact>& embedded,
+  std::vector<ObstacleContact>& contacts);
+
 } // namespace thintissue
 
 #endif

@@ -172,3 +172,53 @@ TEST(ToolContacts, ReducedAndFullMeshesAgreeOnAFlatSheet)
   EXPECT_NEAR(stiffnessA, 10.0, 1e-9);
   EXPECT_NEAR(stiffnessB, 10.0, 1e-9);
 }
+
+TEST(ToolContacts, PressedOntoAnObstacleTheLowerSurfaceTouches)
+{
+  // The table 6-2 situation in miniature: the probe presses the tissue down
+  // onto a rigid floor 2 mm below it; contacts with the floor appear and all
+  // are on the tissue's lower surface.
+  SheetScene scene(2);
+  TriangleMesh floor;
+  floor.name = "floor";
+  floor.positions = {
+    Vector3(-80, -80, -3), Vector3(80, -80, -3), Vector3(80, 80, -3), Vector3(-80, 80, -3)
+  };
+  floor.triangles = { { 0, 1, 2 }, { 0, 2, 3 } };
+  const StaticObstacle obstacle(floor);
+  Vector3 tip(0.0, 0.0, 1.0 + 1.5 + 0.5);
+  std::size_t before = 0;
+  std::size_t after = 0;
+  for (int k = 0; k < 200; ++k)
+  {
+    if (k < 100)
+    {
+      tip.z() -= 0.028; // 2.8 mm down: across the 2 mm gap, squeezing 0.3 mm
+    }
+    scene.collision.update(scene.fem.positions());
+    std::vector<EmbeddedContact> springs;
+    std::vector<ToolContact> toolContacts;
+    std::vector<ObstacleContact> floorContacts;
+    findToolContacts(scene.collision, probeAt(tip, 1.5), 200.0, 0.1, springs, toolContacts);
+    findObstacleContacts(scene.collision, obstacle, 200.0, 0.1, springs, floorContacts);
+    scene.fem.setContacts(springs);
+    ASSERT_TRUE(scene.fem.step().ok);
+    for (const auto& c : floorContacts)
+    {
+      EXPECT_EQ(c.tissueSide, -1);
+      EXPECT_GT(c.normal.z(), 0.99);
+    }
+    if (k == 0)
+    {
+      before = floorContacts.size();
+    }
+    after = floorContacts.size();
+  }
+  EXPECT_EQ(before, 0u);
+  EXPECT_GT(after, 0u);
+  // The floor holds the tissue: nothing sinks much below it.
+  for (const auto& p : scene.collision.positions())
+  {
+    EXPECT_GT(p.z(), -3.0 - 0.2);
+  }
+}
