@@ -300,18 +300,18 @@ bool isCrackFace(const std::vector<ParametricCrack>& cracks,
   return false;
 }
 
+/// Is p on the crack's rectangle (its plane, ranges closed)?
+bool isOnCrack(const ParametricCrack& crack, const ParameterPoint& p)
+{
+  const auto axes = inPlaneAxes(crack.normalAxis);
+  return isSameParameter(p[crack.normalAxis], crack.position) &&
+         isInsideClosed(p[axes[0]], crack.ranges[0]) && isInsideClosed(p[axes[1]], crack.ranges[1]);
+}
+
 bool touchesCrack(const std::vector<ParametricCrack>& cracks, const ParameterPoint& p)
 {
-  for (const auto& crack : cracks)
-  {
-    const auto axes = inPlaneAxes(crack.normalAxis);
-    if (isSameParameter(p[crack.normalAxis], crack.position) &&
-        isInsideClosed(p[axes[0]], crack.ranges[0]) && isInsideClosed(p[axes[1]], crack.ranges[1]))
-    {
-      return true;
-    }
-  }
-  return false;
+  return std::any_of(
+    cracks.begin(), cracks.end(), [&p](const ParametricCrack& c) { return isOnCrack(c, p); });
 }
 
 /// Node-level branch analysis (thesis 5.3.3) on a 3-D cell grid: every node
@@ -424,22 +424,22 @@ std::vector<int> copySides(const std::vector<ParametricCrack>& cracks,
   return sides;
 }
 
-/// A copy on a crack that keeps cells of both of its sides: a tear front.
+/// A copy on a crack that keeps cells of both of its sides (`sides` 0): a
+/// tear front. On a mid-surface (w = 1/2) a horizontal crack is tested at
+/// its own plane.
 bool isTearFront(const std::vector<ParametricCrack>& cracks,
+  const std::vector<int>& sides,
   const ParameterPoint& p,
-  const std::vector<int>& octants)
+  bool onMidSurface)
 {
-  if (!touchesCrack(cracks, p))
-  {
-    return false;
-  }
-  const auto sides = copySides(cracks, p, octants);
   for (std::size_t c = 0; c < cracks.size(); ++c)
   {
-    const auto axes = inPlaneAxes(cracks[c].normalAxis);
-    if (sides[c] == 0 && isSameParameter(p[cracks[c].normalAxis], cracks[c].position) &&
-        isInsideClosed(p[axes[0]], cracks[c].ranges[0]) &&
-        isInsideClosed(p[axes[1]], cracks[c].ranges[1]))
+    ParameterPoint q = p;
+    if (onMidSurface && cracks[c].normalAxis == 2)
+    {
+      q[2] = cracks[c].position;
+    }
+    if (sides[c] == 0 && isOnCrack(cracks[c], q))
     {
       return true;
     }
@@ -517,7 +517,9 @@ TriangleMesh ParametricSolid::boundarySurface(const ParametricResolution& resolu
       const ParameterPoint p = grid.nodeParameter(copies[copy].node);
       vertexOfCopy[copy] = static_cast<int>(mesh.positions.size());
       mesh.positions.push_back(openedPoint(p, copySides(Cracks, p, copies[copy].octants)));
-      isFrontVertex.push_back(isTearFront(Cracks, p, copies[copy].octants));
+      isFrontVertex.push_back(
+        touchesCrack(Cracks, p) &&
+        isTearFront(Cracks, copySides(Cracks, p, copies[copy].octants), p, false));
     }
     return vertexOfCopy[copy];
   };
@@ -760,18 +762,7 @@ TriangleMesh ParametricSolid::midSurface(int along, int across) const
           }
           vertexOfRoot[root] = static_cast<int>(mesh.positions.size());
           mesh.positions.push_back(openedPoint(mid, sides));
-          bool front = false;
-          for (std::size_t c = 0; c < Cracks.size(); ++c)
-          {
-            const auto axes = inPlaneAxes(Cracks[c].normalAxis);
-            const ParameterPoint onPlane(lineS[i], lineU[j], Cracks[c].position);
-            const ParameterPoint& q = Cracks[c].normalAxis == 2 ? onPlane : nodeParameter;
-            front = front || (sides[c] == 0 &&
-                               isSameParameter(q[Cracks[c].normalAxis], Cracks[c].position) &&
-                               isInsideClosed(q[axes[0]], Cracks[c].ranges[0]) &&
-                               isInsideClosed(q[axes[1]], Cracks[c].ranges[1]));
-          }
-          isFrontVertex.push_back(front);
+          isFrontVertex.push_back(isTearFront(Cracks, sides, nodeParameter, true));
           radii.push_back(0.5 * (Map(ParameterPoint(lineS[i], lineU[j], high)) -
                                   Map(ParameterPoint(lineS[i], lineU[j], low)))
                                   .norm());

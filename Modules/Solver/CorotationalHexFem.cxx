@@ -454,6 +454,42 @@ Eigen::Matrix3d CorotationalHexFem::currentRotation(const Element& element) cons
   return polarRotation(gradient);
 }
 
+void CorotationalHexFem::accumulateElasticForce(const Element& element,
+  const Eigen::Matrix3d& rotation,
+  double velocityScale,
+  double sign,
+  std::vector<Vector3>& forces) const
+{
+  // f_e = R K_e (R^T (x + s v) - X): the elastic force, plus s K v for the
+  // damping and implicit terms when s > 0.
+  ElementVector local;
+  for (int a = 0; a < 8; ++a)
+  {
+    const int n = element.nodes[a];
+    local.segment<3>(3 * a) =
+      rotation.transpose() * (Positions[n] + velocityScale * Velocities[n]) - RestPositions[n];
+  }
+  const ElementVector localForce = element.rest.stiffness * local;
+  for (int a = 0; a < 8; ++a)
+  {
+    forces[element.nodes[a]] += sign * (rotation * localForce.segment<3>(3 * a));
+  }
+}
+
+Vector3 CorotationalHexFem::contactForce(const EmbeddedContact& c, double h) const
+{
+  // Spring at the current depth and damper, with the implicit h k term: the
+  // force the linearised step applies at the point's velocity.
+  const auto weights = trilinearWeights(c.local);
+  Vector3 velocity = Vector3::Zero();
+  for (int a = 0; a < 8; ++a)
+  {
+    velocity += weights[a] * Velocities[Elements[c.hexahedron].nodes[a]];
+  }
+  return (c.stiffness * c.depth - (h * c.stiffness + c.damping) * c.normal.dot(velocity)) *
+         c.normal;
+}
+
 void CorotationalHexFem::assemble(double stiffnessScale,
   double massScale,
   double velocityStiffnessScale,
@@ -472,20 +508,7 @@ void CorotationalHexFem::assemble(double stiffnessScale,
     }
     const Eigen::Matrix3d rotation = currentRotation(element);
     element.rotation = rotation;
-    // Local displacement (and velocity, for the damping and implicit terms).
-    ElementVector local;
-    for (int a = 0; a < 8; ++a)
-    {
-      const int n = element.nodes[a];
-      local.segment<3>(3 * a) =
-        rotation.transpose() * (Positions[n] + velocityStiffnessScale * Velocities[n]) -
-        RestPositions[n];
-    }
-    const ElementVector localForce = element.rest.stiffness * local;
-    for (int a = 0; a < 8; ++a)
-    {
-      forces[element.nodes[a]] -= rotation * localForce.segment<3>(3 * a);
-    }
+    accumulateElasticForce(element, rotation, velocityStiffnessScale, -1.0, forces);
     // Rotated stiffness blocks R K_ab R^T into the matrix.
     const auto& offsets = s.elementOffsets[e];
     for (int a = 0; a < 8; ++a)
@@ -603,14 +626,8 @@ void CorotationalHexFem::assembleContacts(double h)
   {
     const Element& element = Elements[c.hexahedron];
     const auto weights = trilinearWeights(c.local);
-    Vector3 velocity = Vector3::Zero();
-    for (int a = 0; a < 8; ++a)
-    {
-      velocity += weights[a] * Velocities[element.nodes[a]];
-    }
     const double implicitDamping = h * c.stiffness + c.damping;
-    const Vector3 force =
-      (c.stiffness * c.depth - implicitDamping * c.normal.dot(velocity)) * c.normal;
+    const Vector3 force = contactForce(c, h); // at the start-of-step velocity
     const Eigen::Matrix3d block = (h * implicitDamping) * c.normal * c.normal.transpose();
     const auto& offsets = s.elementOffsets[c.hexahedron];
     for (int a = 0; a < 8; ++a)
@@ -771,15 +788,7 @@ SolverResult CorotationalHexFem::step()
   // The contact forces as the implicit step applied them (end velocity).
   for (std::size_t k = 0; k < Contacts.size(); ++k)
   {
-    const EmbeddedContact& c = Contacts[k];
-    const auto weights = trilinearWeights(c.local);
-    Vector3 velocity = Vector3::Zero();
-    for (int a = 0; a < 8; ++a)
-    {
-      velocity += weights[a] * Velocities[Elements[c.hexahedron].nodes[a]];
-    }
-    ContactForces[k] =
-      (c.stiffness * c.depth - (h * c.stiffness + c.damping) * c.normal.dot(velocity)) * c.normal;
+    ContactForces[k] = contactForce(Contacts[k], h); // at the end-of-step velocity
   }
   return result;
 }
@@ -856,18 +865,7 @@ std::vector<Vector3> CorotationalHexFem::elasticForces() const
     {
       continue;
     }
-    const Eigen::Matrix3d rotation = currentRotation(element);
-    ElementVector local;
-    for (int a = 0; a < 8; ++a)
-    {
-      local.segment<3>(3 * a) =
-        rotation.transpose() * Positions[element.nodes[a]] - RestPositions[element.nodes[a]];
-    }
-    const ElementVector localForce = element.rest.stiffness * local;
-    for (int a = 0; a < 8; ++a)
-    {
-      forces[element.nodes[a]] += rotation * localForce.segment<3>(3 * a);
-    }
+    accumulateElasticForce(element, currentRotation(element), 0.0, 1.0, forces);
   }
   return forces;
 }

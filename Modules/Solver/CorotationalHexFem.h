@@ -154,7 +154,8 @@ public:
   /// One implicit Euler step of length settings().timeStep.
   SolverResult step();
   /// Equilibrium under the external forces and gravity (Newton iterations
-  /// on the co-rotational force). Needs at least one fixed node.
+  /// on the co-rotational force); contacts act in step() only. Needs at
+  /// least one fixed node.
   SolverResult solveStatic(int maxIterations = 30, double relativeTolerance = 1e-10);
   /// Elastic forces f_int at the current positions (zero for a rigid motion
   /// of the rest shape), one per node.
@@ -193,6 +194,14 @@ private:
     const LinearMaterial& material,
     std::size_t index) const;
   void updateNodeMasses();
+  /// forces += sign * R K_e (R^T (x + velocityScale v) - X).
+  void accumulateElasticForce(const Element& element,
+    const Eigen::Matrix3d& rotation,
+    double velocityScale,
+    double sign,
+    std::vector<Vector3>& forces) const;
+  /// The linearised contact's force at the current velocities.
+  Vector3 contactForce(const EmbeddedContact& contact, double h) const;
   /// R of the element at the current positions (identity for linear FEM).
   Eigen::Matrix3d currentRotation(const Element& element) const;
   void prepareSystem();

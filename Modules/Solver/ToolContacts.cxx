@@ -22,12 +22,30 @@ DeformableCollisionMesh::DeformableCollisionMesh(const TriangleMesh& collision,
     throw InvalidInputError("collision mesh '" + collision.name + "': negative contact distance");
   }
   Bvh.build(Positions, Triangles, Radii, ContactDistance);
+  VertexNormals.resize(Positions.size());
+  updateVertexNormals();
 }
 
 void DeformableCollisionMesh::update(const std::vector<Vector3>& nodePositions)
 {
   Embedding.mapPositions(nodePositions, Positions);
   Bvh.refit(Positions, Radii);
+  updateVertexNormals();
+}
+
+void DeformableCollisionMesh::updateVertexNormals()
+{
+  // Area-weighted, unnormalised: only their direction is used (which side
+  // of the tissue touches an obstacle).
+  std::fill(VertexNormals.begin(), VertexNormals.end(), Vector3::Zero());
+  for (const Triangle& t : Triangles)
+  {
+    const Vector3 n = (Positions[t[1]] - Positions[t[0]]).cross(Positions[t[2]] - Positions[t[0]]);
+    for (int k = 0; k < 3; ++k)
+    {
+      VertexNormals[t[k]] += n;
+    }
+  }
 }
 
 void findToolContacts(const DeformableCollisionMesh& tissue,
@@ -122,18 +140,7 @@ void findObstacleContacts(const DeformableCollisionMesh& tissue,
   const auto& positions = tissue.positions();
   const auto& radii = tissue.radii();
   const TriangleMesh& surface = obstacle.surface();
-  // Vertex normals of the deformed collision mesh: which side touches
-  // (a buffer reused across calls: no allocation per step).
-  thread_local std::vector<Vector3> vertexNormals;
-  vertexNormals.assign(positions.size(), Vector3::Zero());
-  for (const Triangle& t : tissue.triangles())
-  {
-    const Vector3 n = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
-    for (int k = 0; k < 3; ++k)
-    {
-      vertexNormals[t[k]] += n;
-    }
-  }
+  const auto& vertexNormals = tissue.vertexNormals();
   for (std::size_t v = 0; v < positions.size(); ++v)
   {
     BoundingBox query(positions[v]);

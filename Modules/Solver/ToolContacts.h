@@ -48,8 +48,10 @@ public:
   DeformableCollisionMesh(const TriangleMesh& collision,
     const HexahedralMesh& hexahedra,
     double contactDistance = 0.0);
-  /// x = H u, then a BVH refit. No allocation.
+  /// x = H u, then a BVH refit and the vertex normals. No allocation.
   void update(const std::vector<Vector3>& nodePositions);
+  /// Area-weighted (unnormalised) vertex normals of the current positions.
+  const std::vector<Vector3>& vertexNormals() const { return VertexNormals; }
   const std::vector<Vector3>& positions() const { return Positions; }
   const std::vector<Triangle>& triangles() const { return Triangles; }
   const std::vector<double>& radii() const { return Radii; }
@@ -63,7 +65,10 @@ private:
   HexahedralEmbedding Embedding;
   std::vector<Vector3> Positions;
   TriangleBvh Bvh;
+  std::vector<Vector3> VertexNormals;
   double ContactDistance = 0.0;
+
+  void updateVertexNormals();
 };
 
 /// Penalty contacts of the capsules with the tissue: for each capsule its
