@@ -278,6 +278,7 @@ void CorotationalHexFem::removeHexahedron(std::size_t h)
     {
       Contacts.erase(Contacts.begin() + static_cast<std::ptrdiff_t>(k));
       ContactForces.erase(ContactForces.begin() + static_cast<std::ptrdiff_t>(k));
+      ContactFrictionDamping.erase(ContactFrictionDamping.begin() + static_cast<std::ptrdiff_t>(k));
     }
   }
   for (int a = 0; a < 8; ++a)
@@ -476,18 +477,28 @@ void CorotationalHexFem::accumulateElasticForce(const Element& element,
   }
 }
 
-Vector3 CorotationalHexFem::contactForce(const EmbeddedContact& c, double h) const
+Vector3 CorotationalHexFem::contactRelativeVelocity(const EmbeddedContact& c) const
 {
-  // Spring at the current depth and damper, with the implicit h k term: the
-  // force the linearised step applies at the point's velocity.
   const auto weights = trilinearWeights(c.local);
-  Vector3 velocity = Vector3::Zero();
+  Vector3 velocity = -c.surfaceVelocity;
   for (int a = 0; a < 8; ++a)
   {
     velocity += weights[a] * Velocities[Elements[c.hexahedron].nodes[a]];
   }
-  return (c.stiffness * c.depth - (h * c.stiffness + c.damping) * c.normal.dot(velocity)) *
-         c.normal;
+  return velocity;
+}
+
+Vector3 CorotationalHexFem::contactForce(const EmbeddedContact& c,
+  double h,
+  double frictionDamping) const
+{
+  // Spring at the current depth and damper, with the implicit h k term, and
+  // the tangential (friction) damper: the force the linearised step applies
+  // at the point's velocity.
+  const Vector3 velocity = contactRelativeVelocity(c);
+  const double normalSpeed = c.normal.dot(velocity);
+  return (c.stiffness * c.depth - (h * c.stiffness + c.damping) * normalSpeed) * c.normal -
+         frictionDamping * (velocity - normalSpeed * c.normal);
 }
 
 void CorotationalHexFem::assemble(double stiffnessScale,
@@ -601,34 +612,54 @@ void CorotationalHexFem::setContacts(const std::vector<EmbeddedContact>& contact
   for (std::size_t k = 0; k < contacts.size(); ++k)
   {
     const EmbeddedContact& c = contacts[k];
-    const bool valid = c.hexahedron < Elements.size() && Elements[c.hexahedron].active &&
-                       c.local.allFinite() && c.normal.allFinite() &&
-                       std::abs(c.normal.norm() - 1.0) < 1e-6 && std::isfinite(c.depth) &&
-                       c.stiffness >= 0.0 && std::isfinite(c.stiffness) && c.damping >= 0.0 &&
-                       std::isfinite(c.damping);
+    const bool valid =
+      c.hexahedron < Elements.size() && Elements[c.hexahedron].active && c.local.allFinite() &&
+      c.normal.allFinite() && std::abs(c.normal.norm() - 1.0) < 1e-6 && std::isfinite(c.depth) &&
+      c.stiffness >= 0.0 && std::isfinite(c.stiffness) && c.damping >= 0.0 &&
+      std::isfinite(c.damping) && c.surfaceVelocity.allFinite() && c.friction >= 0.0 &&
+      std::isfinite(c.friction) && c.slipVelocity > 0.0 && std::isfinite(c.slipVelocity);
     if (!valid)
     {
       throw InvalidInputError(
         "co-rotational FEM: contact " + std::to_string(k) +
         " is invalid (hexahedron out of range or inactive, normal not unit, negative or "
-        "non-finite stiffness, damping or depth)");
+        "non-finite stiffness, damping, friction or depth, non-positive slip velocity or "
+        "non-finite surface velocity)");
     }
   }
   Contacts = contacts;
   ContactForces.assign(Contacts.size(), Vector3::Zero());
+  ContactFrictionDamping.assign(Contacts.size(), 0.0);
 }
 
 void CorotationalHexFem::assembleContacts(double h)
 {
   LinearSystem& s = *System;
   double* values = s.matrix.valuePtr();
-  for (const EmbeddedContact& c : Contacts)
+  for (std::size_t k = 0; k < Contacts.size(); ++k)
   {
+    const EmbeddedContact& c = Contacts[k];
     const Element& element = Elements[c.hexahedron];
     const auto weights = trilinearWeights(c.local);
     const double implicitDamping = h * c.stiffness + c.damping;
-    const Vector3 force = contactForce(c, h); // at the start-of-step velocity
-    const Eigen::Matrix3d block = (h * implicitDamping) * c.normal * c.normal.transpose();
+    // Regularised Coulomb friction as a tangential damper whose coefficient
+    // is fixed from the start-of-step normal force and slip speed.
+    double frictionDamping = 0.0;
+    if (c.friction > 0.0)
+    {
+      const Vector3 velocity = contactRelativeVelocity(c);
+      const double normalSpeed = c.normal.dot(velocity);
+      const double normalForce =
+        std::max(0.0, c.stiffness * c.depth - implicitDamping * normalSpeed);
+      const double slip = (velocity - normalSpeed * c.normal).norm();
+      frictionDamping = c.friction * normalForce / std::max(slip, c.slipVelocity);
+    }
+    ContactFrictionDamping[k] = frictionDamping;
+    const Vector3 force = contactForce(c, h, frictionDamping); // at the start-of-step velocity
+    const Eigen::Matrix3d normalProjector = c.normal * c.normal.transpose();
+    const Eigen::Matrix3d block =
+      h * (implicitDamping * normalProjector +
+            frictionDamping * (Eigen::Matrix3d::Identity() - normalProjector));
     const auto& offsets = s.elementOffsets[c.hexahedron];
     for (int a = 0; a < 8; ++a)
     {
@@ -725,12 +756,32 @@ bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
 
 SolverResult CorotationalHexFem::step()
 {
+  SolverResult result = beginCoupledStep();
+  if (!result.ok || System->dofCount == 0)
+  {
+    return result; // failed, or everything fixed: nothing moves
+  }
+  LinearSystem& s = *System;
+  if (!solveSystem(s.solution, result.iterations, result.message))
+  {
+    result.ok = false;
+    result.message = "co-rotational FEM step: " + result.message + "; the last good state is kept";
+    return result;
+  }
+  const SolverResult finished = finishCoupledStep(s.solution);
+  result.ok = finished.ok;
+  result.message = finished.message;
+  return result;
+}
+
+SolverResult CorotationalHexFem::beginCoupledStep()
+{
   SolverResult result;
   prepareSystem();
   LinearSystem& s = *System;
   if (s.dofCount == 0)
   {
-    return result; // everything fixed: nothing moves
+    return result;
   }
   const double h = Settings.timeStep;
   const double alpha = Settings.rayleighMass;
@@ -751,21 +802,84 @@ SolverResult CorotationalHexFem::step()
   {
     result.ok = false;
     result.message = "co-rotational FEM: the forces are not finite; the last good state is kept";
-    return result;
   }
-  if (!solveSystem(s.solution, result.iterations, result.message))
+  return result;
+}
+
+Eigen::Index CorotationalHexFem::systemSize() const
+{
+  return System->dofCount;
+}
+
+int CorotationalHexFem::degreeOfFreedom(std::size_t node) const
+{
+  return System->dofOfNode[node];
+}
+
+const Eigen::VectorXd& CorotationalHexFem::systemRightHandSide() const
+{
+  return System->rhs;
+}
+
+const Eigen::VectorXd& CorotationalHexFem::previousSystemSolution() const
+{
+  return System->previousSolution;
+}
+
+void CorotationalHexFem::multiplySystem(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
+{
+  y.noalias() = System->matrix.selfadjointView<Eigen::Upper>() * x;
+}
+
+bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
+  Eigen::VectorXd& z,
+  std::string& message)
+{
+  LinearSystem& s = *System;
+  const bool jacobi =
+    Settings.solver == LinearSolverKind::ConjugateGradient ||
+    (Settings.solver == LinearSolverKind::Automatic && s.dofCount > AutomaticDirectLimit);
+  if (jacobi)
+  {
+    z = r.cwiseQuotient(s.matrix.diagonal());
+    return true;
+  }
+  if (!s.factorValid && !factorize(message))
+  {
+    return false;
+  }
+  z = s.cholmod.solve(r);
+  return true;
+}
+
+void CorotationalHexFem::invalidateFactor()
+{
+  System->factorValid = false;
+}
+
+SolverResult CorotationalHexFem::finishCoupledStep(const Eigen::VectorXd& solution)
+{
+  SolverResult result;
+  LinearSystem& s = *System;
+  if (solution.size() != s.dofCount)
   {
     result.ok = false;
-    result.message = "co-rotational FEM step: " + result.message + "; the last good state is kept";
+    result.message = "co-rotational FEM step: the solution has " + std::to_string(solution.size()) +
+                     " entries, the system " + std::to_string(s.dofCount);
     return result;
   }
+  if (Settings.solver == LinearSolverKind::Cholmod)
+  {
+    s.factorValid = false; // refactorized every step
+  }
+  const double h = Settings.timeStep;
   // Never write a non-finite state: check the update before applying it.
   for (std::size_t n = 0; n < Positions.size(); ++n)
   {
     const int dof = s.dofOfNode[n];
     if (dof >= 0)
     {
-      const Vector3 velocity = Velocities[n] + s.solution.segment<3>(dof);
+      const Vector3 velocity = Velocities[n] + solution.segment<3>(dof);
       if (!velocity.allFinite() || !(Positions[n] + h * velocity).allFinite())
       {
         result.ok = false;
@@ -775,20 +889,21 @@ SolverResult CorotationalHexFem::step()
       }
     }
   }
-  s.previousSolution = s.solution;
+  s.previousSolution = solution;
   for (std::size_t n = 0; n < Positions.size(); ++n)
   {
     const int dof = s.dofOfNode[n];
     if (dof >= 0)
     {
-      Velocities[n] += s.solution.segment<3>(dof);
+      Velocities[n] += solution.segment<3>(dof);
       Positions[n] += h * Velocities[n];
     }
   }
   // The contact forces as the implicit step applied them (end velocity).
   for (std::size_t k = 0; k < Contacts.size(); ++k)
   {
-    ContactForces[k] = contactForce(Contacts[k], h); // at the end-of-step velocity
+    // at the end-of-step velocity
+    ContactForces[k] = contactForce(Contacts[k], h, ContactFrictionDamping[k]);
   }
   return result;
 }

@@ -19,6 +19,8 @@
 #include "HexahedronElement.h"
 #include "ThinTissueSolverModule.h"
 
+#include <Eigen/Core>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,12 +71,19 @@ struct CorotationalHexFemSettings
 };
 
 /// A penalty contact on a point embedded in a hexahedron (thesis 5.1,
-/// response): the point x_p = sum_a w_a x_a is pushed along `normal` by
-///   F = stiffness * depth * n - (h * stiffness + damping) (n . v_p) n,
-/// the spring and damper linearised into the implicit step (their stiffness
-/// w_a w_b k n n^T enters the system matrix) so that stiff contact stays
-/// stable at large time steps. Weights come from the collision-simulation
-/// embedding (trilinear, HexahedralEmbedding); F goes up with H^T.
+/// response): the point x_p = sum_a w_a x_a, moving at v_p relative to the
+/// other body's surface (v_r = v_p - surfaceVelocity), is pushed along
+/// `normal` by
+///   F_n = stiffness * depth * n - (h * stiffness + damping) (n . v_r) n,
+/// and, with friction mu > 0, held by the regularised Coulomb force
+///   F_t = -c_t (I - n n^T) v_r,  c_t = mu |F_n| / max(|v_t|, slipVelocity),
+/// |F_n| and c_t taken at the start of the step: below `slipVelocity` the
+/// tissue sticks (a stiff viscous tie), above it slides under a force of
+/// magnitude mu |F_n|. Both are linearised into the implicit step (their
+/// matrix w_a w_b h [(h k + c) n n^T + c_t (I - n n^T)] enters the system),
+/// so that stiff contact and sticking friction stay stable at large time
+/// steps. Weights come from the collision-simulation embedding (trilinear,
+/// HexahedralEmbedding); F goes up with H^T.
 struct EmbeddedContact
 {
   std::size_t hexahedron = 0;
@@ -86,6 +95,14 @@ struct EmbeddedContact
   double depth = 0.0;
   double stiffness = 0.0;
   double damping = 0.0;
+  /// Velocity of the other body's surface at the contact (a moving tool,
+  /// another tissue); zero for a static obstacle.
+  Vector3 surfaceVelocity = Vector3::Zero();
+  /// Coulomb friction coefficient mu (0: frictionless).
+  double friction = 0.0;
+  /// Regularisation of the Coulomb cone: tangential speed below which the
+  /// contact sticks viscously (in the model's units, e.g. mm/s). Positive.
+  double slipVelocity = 1.0;
 };
 
 /// Outcome of a step or a static solve. On failure the state is the last
@@ -146,13 +163,40 @@ public:
   void setContacts(const std::vector<EmbeddedContact>& contacts);
   const std::vector<EmbeddedContact>& contacts() const { return Contacts; }
   /// The force each contact applied in the last step (the implicit one, at
-  /// the end-of-step velocity): equal and opposite to what the other body
-  /// (a tool) receives.
+  /// the end-of-step velocity; normal and friction): equal and opposite to
+  /// what the other body (a tool) receives.
   const std::vector<Vector3>& contactForces() const { return ContactForces; }
 
   // --- Simulation ----------------------------------------------------------
   /// One implicit Euler step of length settings().timeStep.
   SolverResult step();
+  // --- Several bodies solved together (CollisionScene) ---------------------
+  // step() = beginCoupledStep(), solve A dv = b, finishCoupledStep(dv). A
+  // caller coupling bodies (contacts between two tissues) assembles each
+  // body's system, solves the stacked one with its cross terms by
+  // conjugate gradients (A_i symmetric positive definite), and finishes
+  // each body with its part of the solution.
+  /// Assembles this step's system (with the contacts) without solving it.
+  SolverResult beginCoupledStep();
+  /// Free degrees of freedom (3 per simulated, non-fixed node).
+  Eigen::Index systemSize() const;
+  /// First degree of freedom of a node in the system, -1 if it is fixed.
+  int degreeOfFreedom(std::size_t node) const;
+  const Eigen::VectorXd& systemRightHandSide() const;
+  /// The last step's solution (a warm start).
+  const Eigen::VectorXd& previousSystemSolution() const;
+  /// y = A x.
+  void multiplySystem(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// z = P^-1 r with this body's preconditioner: its (possibly stale)
+  /// CHOLMOD factor, or the diagonal for the Jacobi kinds.
+  bool preconditionSystem(const Eigen::VectorXd& r, Eigen::VectorXd& z, std::string& message);
+  /// The next preconditionSystem refactorizes (a stale factor converged
+  /// too slowly).
+  void invalidateFactor();
+  /// Applies dv (systemSize() entries): velocities, positions, contact
+  /// forces. A non-finite result is refused and the last good state kept.
+  SolverResult finishCoupledStep(const Eigen::VectorXd& solution);
+
   /// Equilibrium under the external forces and gravity (Newton iterations
   /// on the co-rotational force); contacts act in step() only. Needs at
   /// least one fixed node.
@@ -201,7 +245,11 @@ private:
     double sign,
     std::vector<Vector3>& forces) const;
   /// The linearised contact's force at the current velocities.
-  Vector3 contactForce(const EmbeddedContact& contact, double h) const;
+  /// Velocity of the contact point relative to the other body's surface.
+  Vector3 contactRelativeVelocity(const EmbeddedContact& contact) const;
+  /// Normal spring and damper plus the friction damper `frictionDamping`
+  /// (c_t) at the current velocities: the force the linearised step applies.
+  Vector3 contactForce(const EmbeddedContact& contact, double h, double frictionDamping) const;
   /// R of the element at the current positions (identity for linear FEM).
   Eigen::Matrix3d currentRotation(const Element& element) const;
   void prepareSystem();
@@ -227,6 +275,8 @@ private:
   std::vector<Element> Elements;
   std::vector<EmbeddedContact> Contacts;
   std::vector<Vector3> ContactForces;
+  /// c_t of each contact, fixed at the start of the step (see EmbeddedContact).
+  std::vector<double> ContactFrictionDamping;
   CorotationalHexFemSettings Settings;
   std::unique_ptr<LinearSystem> System;
   bool TopologyChanged = true;

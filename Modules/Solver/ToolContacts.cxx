@@ -1,6 +1,6 @@
 #include "ToolContacts.h"
 
-#include "ProximityQueries.h"
+#include "ContactKernels.h"
 #include "ThinTissueError.h"
 
 namespace thintissue
@@ -55,57 +55,32 @@ void findToolContacts(const DeformableCollisionMesh& tissue,
   std::vector<EmbeddedContact>& embedded,
   std::vector<ToolContact>& contacts)
 {
-  const auto& positions = tissue.positions();
-  const auto& radii = tissue.radii();
+  const contact_kernels::ThickMeshView view = contact_kernels::viewOf(tissue);
   const auto& embedding = tissue.embedding();
   for (const ToolCapsule& capsule : tool)
   {
-    BoundingBox query(capsule.start);
-    query.extend(capsule.end);
-    query.min().array() -= capsule.radius;
-    query.max().array() += capsule.radius;
     // The deepest overlap of this capsule: one contact per capsule, so the
     // force does not grow with the collision mesh's resolution.
-    SegmentTriangleContact deepest;
-    int deepestTriangle = -1;
-    tissue.bvh().forEachOverlap(query,
-      [&](int t)
-      {
-        const Triangle& tri = tissue.triangles()[t];
-        const SegmentTriangleContact c = segmentTriangleContact(capsule.start,
-          capsule.end,
-          capsule.radius,
-          positions[tri[0]],
-          positions[tri[1]],
-          positions[tri[2]],
-          radii[tri[0]],
-          radii[tri[1]],
-          radii[tri[2]],
-          0.0);
-        if (c.penetrating() && (deepestTriangle < 0 || c.depth > deepest.depth))
-        {
-          deepest = c;
-          deepestTriangle = t;
-        }
-      });
-    if (deepestTriangle < 0)
+    const contact_kernels::DeepestSegmentContact deepest =
+      contact_kernels::deepestCapsuleContact(capsule, view);
+    if (deepest.triangle < 0)
     {
       continue;
     }
     ToolContact contact;
-    contact.point = deepest.trianglePoint;
-    contact.normal = deepest.normal;
-    contact.depth = deepest.depth;
+    contact.point = deepest.contact.trianglePoint;
+    contact.normal = deepest.contact.normal;
+    contact.depth = deepest.contact.depth;
     contact.stiffness = stiffness;
-    contact.triangle = deepestTriangle;
-    contact.side = deepest.side;
+    contact.triangle = deepest.triangle;
+    contact.side = deepest.contact.side;
     contacts.push_back(contact);
     // The tissue is pushed away from the tool (along -normal), the spring
     // spread over the triangle's vertices by their barycentric weights.
-    const Triangle& tri = tissue.triangles()[deepestTriangle];
+    const Triangle& tri = tissue.triangles()[deepest.triangle];
     for (int k = 0; k < 3; ++k)
     {
-      const double share = deepest.barycentric[k];
+      const double share = deepest.contact.barycentric[k];
       if (share <= 0.0)
       {
         continue;
@@ -113,8 +88,8 @@ void findToolContacts(const DeformableCollisionMesh& tissue,
       EmbeddedContact spring;
       spring.hexahedron = static_cast<std::size_t>(embedding.hexahedron(tri[k]));
       spring.local = embedding.localCoordinates(tri[k]);
-      spring.normal = -deepest.normal;
-      spring.depth = deepest.depth;
+      spring.normal = -deepest.contact.normal;
+      spring.depth = deepest.contact.depth;
       spring.stiffness = share * stiffness;
       spring.damping = share * damping;
       embedded.push_back(spring);
@@ -139,51 +114,29 @@ void findObstacleContacts(const DeformableCollisionMesh& tissue,
 {
   const auto& positions = tissue.positions();
   const auto& radii = tissue.radii();
-  const TriangleMesh& surface = obstacle.surface();
   const auto& vertexNormals = tissue.vertexNormals();
+  const contact_kernels::ThickMeshView view = contact_kernels::viewOf(obstacle);
   for (std::size_t v = 0; v < positions.size(); ++v)
   {
-    BoundingBox query(positions[v]);
-    query.min().array() -= radii[v];
-    query.max().array() += radii[v];
-    PointTriangleContact deepest;
-    int deepestTriangle = -1;
-    obstacle.bvh().forEachOverlap(query,
-      [&](int t)
-      {
-        const Triangle& tri = surface.triangles[t];
-        const PointTriangleContact c = pointTriangleContact(positions[v],
-          radii[v],
-          surface.positions[tri[0]],
-          surface.positions[tri[1]],
-          surface.positions[tri[2]],
-          obstacle.radii()[tri[0]],
-          obstacle.radii()[tri[1]],
-          obstacle.radii()[tri[2]],
-          0.0);
-        if (c.penetrating() && (deepestTriangle < 0 || c.depth > deepest.depth))
-        {
-          deepest = c;
-          deepestTriangle = t;
-        }
-      });
-    if (deepestTriangle < 0)
+    const contact_kernels::DeepestPointContact deepest =
+      contact_kernels::deepestSphereContact(positions[v], radii[v], view);
+    if (deepest.triangle < 0)
     {
       continue;
     }
     ObstacleContact contact;
     contact.vertex = static_cast<int>(v);
-    contact.triangle = deepestTriangle;
-    contact.point = deepest.trianglePoint;
-    contact.normal = deepest.normal;
-    contact.depth = deepest.depth;
-    contact.tissueSide = vertexNormals[v].dot(deepest.normal) > 0.0 ? -1 : 1;
+    contact.triangle = deepest.triangle;
+    contact.point = deepest.contact.trianglePoint;
+    contact.normal = deepest.contact.normal;
+    contact.depth = deepest.contact.depth;
+    contact.tissueSide = vertexNormals[v].dot(deepest.contact.normal) > 0.0 ? -1 : 1;
     contacts.push_back(contact);
     EmbeddedContact spring;
     spring.hexahedron = static_cast<std::size_t>(tissue.embedding().hexahedron(v));
     spring.local = tissue.embedding().localCoordinates(v);
-    spring.normal = deepest.normal;
-    spring.depth = deepest.depth;
+    spring.normal = deepest.contact.normal;
+    spring.depth = deepest.contact.depth;
     spring.stiffness = stiffness;
     spring.damping = damping;
     embedded.push_back(spring);

@@ -1,0 +1,279 @@
+#include "ContactKernels.h"
+
+#include <algorithm>
+
+namespace thintissue
+{
+namespace contact_kernels
+{
+
+ThickMeshView viewOf(const DeformableCollisionMesh& mesh)
+{
+  return {
+    &mesh.positions(), &mesh.triangles(), &mesh.radii(), &mesh.bvh(), &mesh.vertexNormals()
+  };
+}
+
+ThickMeshView viewOf(const StaticObstacle& obstacle)
+{
+  return { &obstacle.surface().positions,
+    &obstacle.surface().triangles,
+    &obstacle.radii(),
+    &obstacle.bvh(),
+    nullptr };
+}
+
+DeepestPointContact deepestSphereContact(const Vector3& centre,
+  double radius,
+  const ThickMeshView& mesh)
+{
+  const auto& positions = *mesh.positions;
+  const auto& radii = *mesh.radii;
+  BoundingBox query(centre);
+  query.min().array() -= radius;
+  query.max().array() += radius;
+  DeepestPointContact deepest;
+  mesh.bvh->forEachOverlap(query,
+    [&](int t)
+    {
+      const Triangle& tri = (*mesh.triangles)[t];
+      const PointTriangleContact c = pointTriangleContact(centre,
+        radius,
+        positions[tri[0]],
+        positions[tri[1]],
+        positions[tri[2]],
+        radii[tri[0]],
+        radii[tri[1]],
+        radii[tri[2]],
+        0.0);
+      if (c.penetrating() && (deepest.triangle < 0 || c.depth > deepest.contact.depth))
+      {
+        deepest.contact = c;
+        deepest.triangle = t;
+      }
+    });
+  return deepest;
+}
+
+DeepestSegmentContact deepestCapsuleContact(const ToolCapsule& capsule, const ThickMeshView& mesh)
+{
+  const auto& positions = *mesh.positions;
+  const auto& radii = *mesh.radii;
+  BoundingBox query(capsule.start);
+  query.extend(capsule.end);
+  query.min().array() -= capsule.radius;
+  query.max().array() += capsule.radius;
+  DeepestSegmentContact deepest;
+  mesh.bvh->forEachOverlap(query,
+    [&](int t)
+    {
+      const Triangle& tri = (*mesh.triangles)[t];
+      const SegmentTriangleContact c = segmentTriangleContact(capsule.start,
+        capsule.end,
+        capsule.radius,
+        positions[tri[0]],
+        positions[tri[1]],
+        positions[tri[2]],
+        radii[tri[0]],
+        radii[tri[1]],
+        radii[tri[2]],
+        0.0);
+      if (c.penetrating() && (deepest.triangle < 0 || c.depth > deepest.contact.depth))
+      {
+        deepest.contact = c;
+        deepest.triangle = t;
+      }
+    });
+  return deepest;
+}
+
+namespace
+{
+
+/// Side of `mesh` that a body lying in `towardOther` touches, from the
+/// vertex normals interpolated at the feature (+1 without normals).
+int sideOf(const ThickMeshView& mesh,
+  const std::array<int, 3>& vertices,
+  const Vector3& weights,
+  const Vector3& towardOther)
+{
+  if (mesh.vertexNormals == nullptr)
+  {
+    return 1;
+  }
+  Vector3 normal = Vector3::Zero();
+  for (int k = 0; k < 3; ++k)
+  {
+    if (vertices[k] >= 0)
+    {
+      normal += weights[k] * (*mesh.vertexNormals)[vertices[k]];
+    }
+  }
+  return normal.dot(towardOther) >= 0.0 ? 1 : -1;
+}
+
+/// Every vertex of `from` against the triangles of `onto` (deepest each).
+/// `fromIsA` says which side of the FeatureContact `from` fills.
+void vertexFaceContacts(const ThickMeshView& from,
+  const ThickMeshView& onto,
+  bool fromIsA,
+  std::vector<FeatureContact>& contacts)
+{
+  const BoundingBox ontoBounds = onto.bvh->bounds();
+  const auto& positions = *from.positions;
+  const auto& radii = *from.radii;
+  for (std::size_t v = 0; v < positions.size(); ++v)
+  {
+    BoundingBox sphere(positions[v]);
+    sphere.min().array() -= radii[v];
+    sphere.max().array() += radii[v];
+    if (!sphere.intersects(ontoBounds))
+    {
+      continue;
+    }
+    const DeepestPointContact deepest = deepestSphereContact(positions[v], radii[v], onto);
+    if (deepest.triangle < 0)
+    {
+      continue;
+    }
+    const Triangle& tri = (*onto.triangles)[deepest.triangle];
+    // pointTriangleContact's normal points from the triangle to the vertex.
+    const std::array<int, 3> vertex{ { static_cast<int>(v), -1, -1 } };
+    const std::array<int, 3> face{ { tri[0], tri[1], tri[2] } };
+    const Vector3 unit(1.0, 0.0, 0.0);
+    const Vector3& n = deepest.contact.normal;
+    FeatureContact c;
+    c.depth = deepest.contact.depth;
+    if (fromIsA)
+    {
+      c.verticesA = vertex;
+      c.weightsA = unit;
+      c.pointA = positions[v];
+      c.verticesB = face;
+      c.weightsB = deepest.contact.barycentric;
+      c.pointB = deepest.contact.trianglePoint;
+      c.normal = n;
+    }
+    else
+    {
+      c.verticesA = face;
+      c.weightsA = deepest.contact.barycentric;
+      c.pointA = deepest.contact.trianglePoint;
+      c.verticesB = vertex;
+      c.weightsB = unit;
+      c.pointB = positions[v];
+      c.normal = -n;
+    }
+    contacts.push_back(c);
+  }
+}
+
+std::uint64_t edgeKey(int v0, int v1)
+{
+  const auto lo = static_cast<std::uint64_t>(std::min(v0, v1));
+  const auto hi = static_cast<std::uint64_t>(std::max(v0, v1));
+  return (lo << 32) | hi;
+}
+
+} // namespace
+
+void meshMeshContacts(const ThickMeshView& a,
+  const ThickMeshView& b,
+  MeshMeshWorkspace& workspace,
+  std::vector<FeatureContact>& contacts)
+{
+  const std::size_t firstContact = contacts.size();
+  vertexFaceContacts(a, b, true, contacts);
+  vertexFaceContacts(b, a, false, contacts);
+
+  // Edge-edge: crossings of edges inside both (an edge of a coarse tissue
+  // triangle across a tool's edge); pairs met from several triangle pairs
+  // are reported once.
+  const auto& pa = *a.positions;
+  const auto& pb = *b.positions;
+  const auto& ra = *a.radii;
+  const auto& rb = *b.radii;
+  constexpr double inside = 1e-6;
+  workspace.edgeContacts.clear();
+  a.bvh->forEachOverlappingPair(*b.bvh,
+    [&](int ta, int tb)
+    {
+      const Triangle& triA = (*a.triangles)[ta];
+      const Triangle& triB = (*b.triangles)[tb];
+      for (int i = 0; i < 3; ++i)
+      {
+        const int a0 = triA[i];
+        const int a1 = triA[(i + 1) % 3];
+        for (int j = 0; j < 3; ++j)
+        {
+          const int b0 = triB[j];
+          const int b1 = triB[(j + 1) % 3];
+          const SegmentSegmentClosestPoints closest =
+            closestPointsBetweenSegments(pa[a0], pa[a1], pb[b0], pb[b1]);
+          const double s = closest.parameterOnFirst;
+          const double t = closest.parameterOnSecond;
+          if (s <= inside || s >= 1.0 - inside || t <= inside || t >= 1.0 - inside)
+          {
+            continue;
+          }
+          const double radius = (1.0 - s) * ra[a0] + s * ra[a1] + (1.0 - t) * rb[b0] + t * rb[b1];
+          const double depth = radius - closest.distance;
+          if (!(depth > 0.0))
+          {
+            continue;
+          }
+          FeatureContact c;
+          c.verticesA = { { a0, a1, -1 } };
+          c.weightsA = Vector3(1.0 - s, s, 0.0);
+          c.verticesB = { { b0, b1, -1 } };
+          c.weightsB = Vector3(1.0 - t, t, 0.0);
+          c.pointA = closest.pointOnFirst;
+          c.pointB = closest.pointOnSecond;
+          c.depth = depth;
+          const Vector3 offset = c.pointA - c.pointB;
+          const double scale = (pa[a1] - pa[a0]).norm() + (pb[b1] - pb[b0]).norm();
+          if (closest.distance > 1e-12 * scale)
+          {
+            c.normal = offset / closest.distance;
+          }
+          else
+          {
+            // Crossing edges: perpendicular to both, toward A's triangle.
+            Vector3 n = (pa[a1] - pa[a0]).cross(pb[b1] - pb[b0]);
+            const Vector3 centreA = (pa[triA[0]] + pa[triA[1]] + pa[triA[2]]) / 3.0;
+            const Vector3 centreB = (pb[triB[0]] + pb[triB[1]] + pb[triB[2]]) / 3.0;
+            if (n.dot(centreA - centreB) < 0.0)
+            {
+              n = -n;
+            }
+            c.normal = n.norm() > 0.0 ? Vector3(n.normalized()) : Vector3(Vector3::UnitZ());
+          }
+          workspace.edgeContacts.push_back({ edgeKey(a0, a1), edgeKey(b0, b1), c });
+        }
+      }
+    });
+  auto byEdges = [](
+                   const MeshMeshWorkspace::EdgeContact& x, const MeshMeshWorkspace::EdgeContact& y)
+  { return x.edgeOfA != y.edgeOfA ? x.edgeOfA < y.edgeOfA : x.edgeOfB < y.edgeOfB; };
+  std::sort(workspace.edgeContacts.begin(), workspace.edgeContacts.end(), byEdges);
+  for (std::size_t k = 0; k < workspace.edgeContacts.size(); ++k)
+  {
+    const auto& e = workspace.edgeContacts[k];
+    if (k > 0 && e.edgeOfA == workspace.edgeContacts[k - 1].edgeOfA &&
+        e.edgeOfB == workspace.edgeContacts[k - 1].edgeOfB)
+    {
+      continue;
+    }
+    contacts.push_back(e.contact);
+  }
+
+  for (std::size_t k = firstContact; k < contacts.size(); ++k)
+  {
+    FeatureContact& c = contacts[k];
+    c.sideOnA = sideOf(a, c.verticesA, c.weightsA, -c.normal);
+    c.sideOnB = sideOf(b, c.verticesB, c.weightsB, c.normal);
+  }
+}
+
+} // namespace contact_kernels
+} // namespace thintissue

@@ -1,0 +1,98 @@
+// Narrow-phase kernels shared by the tool, obstacle and scene contact
+// routines (private to the Solver module): a thick triangle mesh seen
+// through references, the deepest contact of a sphere or a capsule with it,
+// and the feature contacts between two thick meshes (vertex-face both ways,
+// edge-edge), each feature reported once.
+#ifndef ContactKernels_h
+#define ContactKernels_h
+
+#include "ProximityQueries.h"
+#include "ToolContacts.h"
+#include "TriangleBvh.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace thintissue
+{
+namespace contact_kernels
+{
+
+/// A triangle mesh with radii and its (built or refitted) BVH. Vertex
+/// normals are optional (null): they decide which side of a tissue a
+/// contact touches.
+struct ThickMeshView
+{
+  const std::vector<Vector3>* positions = nullptr;
+  const std::vector<Triangle>* triangles = nullptr;
+  const std::vector<double>* radii = nullptr;
+  const TriangleBvh* bvh = nullptr;
+  const std::vector<Vector3>* vertexNormals = nullptr;
+};
+
+ThickMeshView viewOf(const DeformableCollisionMesh& mesh);
+ThickMeshView viewOf(const StaticObstacle& obstacle);
+
+struct DeepestPointContact
+{
+  PointTriangleContact contact;
+  int triangle = -1; ///< -1: no penetration
+};
+/// The deepest penetrating thick triangle of `mesh` for a sphere.
+DeepestPointContact deepestSphereContact(const Vector3& centre,
+  double radius,
+  const ThickMeshView& mesh);
+
+struct DeepestSegmentContact
+{
+  SegmentTriangleContact contact;
+  int triangle = -1; ///< -1: no penetration
+};
+/// The deepest penetrating thick triangle of `mesh` for a capsule.
+DeepestSegmentContact deepestCapsuleContact(const ToolCapsule& capsule, const ThickMeshView& mesh);
+
+/// A contact between features of meshes A and B: the contact point on each
+/// mid-surface as a combination of up to three of its vertices.
+struct FeatureContact
+{
+  std::array<int, 3> verticesA{ { -1, -1, -1 } };
+  Vector3 weightsA = Vector3::Zero();
+  std::array<int, 3> verticesB{ { -1, -1, -1 } };
+  Vector3 weightsB = Vector3::Zero();
+  Vector3 pointA = Vector3::Zero();
+  Vector3 pointB = Vector3::Zero();
+  Vector3 normal = Vector3::UnitZ(); ///< unit, from B toward A
+  double depth = 0.0;
+  /// Side of A (of B) that the other mesh touches, from A's (B's) vertex
+  /// normals when given, else +1.
+  int sideOnA = 1;
+  int sideOnB = 1;
+};
+
+/// Reused buffers of meshMeshContacts (no allocation once warm).
+struct MeshMeshWorkspace
+{
+  struct EdgeContact
+  {
+    std::uint64_t edgeOfA = 0; ///< lower vertex << 32 | upper vertex
+    std::uint64_t edgeOfB = 0;
+    FeatureContact contact;
+  };
+  std::vector<EdgeContact> edgeContacts;
+};
+
+/// Penetrating feature contacts between two thick meshes: every vertex of A
+/// against B's triangles and every vertex of B against A's (the deepest per
+/// vertex), and edge-edge pairs whose closest points are inside both edges
+/// (one per edge pair; the end points are the vertex contacts' business).
+/// Appends to `contacts`.
+void meshMeshContacts(const ThickMeshView& a,
+  const ThickMeshView& b,
+  MeshMeshWorkspace& workspace,
+  std::vector<FeatureContact>& contacts);
+
+} // namespace contact_kernels
+} // namespace thintissue
+
+#endif
