@@ -63,9 +63,12 @@ SceneContact sceneContactOf(const FeatureContact& c, SceneBody first, SceneBody 
 
 ThickMeshView toolMeshView(const RigidTool& tool)
 {
-  return {
-    &tool.meshPositions(), &tool.meshTriangles(), &tool.meshRadii(), &tool.meshBvh(), nullptr
-  };
+  return { &tool.meshPositions(),
+    &tool.meshTriangles(),
+    &tool.meshRadii(),
+    &tool.meshBvh(),
+    nullptr,
+    tool.meshContactDistance() };
 }
 
 } // namespace

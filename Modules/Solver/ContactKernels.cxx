@@ -9,9 +9,12 @@ namespace contact_kernels
 
 ThickMeshView viewOf(const DeformableCollisionMesh& mesh)
 {
-  return {
-    &mesh.positions(), &mesh.triangles(), &mesh.radii(), &mesh.bvh(), &mesh.vertexNormals()
-  };
+  return { &mesh.positions(),
+    &mesh.triangles(),
+    &mesh.radii(),
+    &mesh.bvh(),
+    &mesh.vertexNormals(),
+    mesh.contactDistance() };
 }
 
 ThickMeshView viewOf(const StaticObstacle& obstacle)
@@ -20,7 +23,8 @@ ThickMeshView viewOf(const StaticObstacle& obstacle)
     &obstacle.surface().triangles,
     &obstacle.radii(),
     &obstacle.bvh(),
-    nullptr };
+    nullptr,
+    obstacle.contactDistance() };
 }
 
 DeepestPointContact deepestSphereContact(const Vector3& centre,
@@ -29,6 +33,7 @@ DeepestPointContact deepestSphereContact(const Vector3& centre,
 {
   const auto& positions = *mesh.positions;
   const auto& radii = *mesh.radii;
+  const double thickness = radius + mesh.contactDistance;
   BoundingBox query(centre);
   query.min().array() -= radius;
   query.max().array() += radius;
@@ -38,7 +43,7 @@ DeepestPointContact deepestSphereContact(const Vector3& centre,
     {
       const Triangle& tri = (*mesh.triangles)[t];
       const PointTriangleContact c = pointTriangleContact(centre,
-        radius,
+        thickness,
         positions[tri[0]],
         positions[tri[1]],
         positions[tri[2]],
@@ -70,7 +75,7 @@ DeepestSegmentContact deepestCapsuleContact(const ToolCapsule& capsule, const Th
       const Triangle& tri = (*mesh.triangles)[t];
       const SegmentTriangleContact c = segmentTriangleContact(capsule.start,
         capsule.end,
-        capsule.radius,
+        capsule.radius + mesh.contactDistance,
         positions[tri[0]],
         positions[tri[1]],
         positions[tri[2]],
@@ -124,14 +129,15 @@ void vertexFaceContacts(const ThickMeshView& from,
   const auto& radii = *from.radii;
   for (std::size_t v = 0; v < positions.size(); ++v)
   {
+    const double radius = radii[v] + from.contactDistance;
     BoundingBox sphere(positions[v]);
-    sphere.min().array() -= radii[v];
-    sphere.max().array() += radii[v];
+    sphere.min().array() -= radius;
+    sphere.max().array() += radius;
     if (!sphere.intersects(ontoBounds))
     {
       continue;
     }
-    const DeepestPointContact deepest = deepestSphereContact(positions[v], radii[v], onto);
+    const DeepestPointContact deepest = deepestSphereContact(positions[v], radius, onto);
     if (deepest.triangle < 0)
     {
       continue;
@@ -216,7 +222,8 @@ void meshMeshContacts(const ThickMeshView& a,
           {
             continue;
           }
-          const double radius = (1.0 - s) * ra[a0] + s * ra[a1] + (1.0 - t) * rb[b0] + t * rb[b1];
+          const double radius = (1.0 - s) * ra[a0] + s * ra[a1] + (1.0 - t) * rb[b0] + t * rb[b1] +
+                                a.contactDistance + b.contactDistance;
           const double depth = radius - closest.distance;
           if (!(depth > 0.0))
           {
@@ -256,16 +263,41 @@ void meshMeshContacts(const ThickMeshView& a,
                    const MeshMeshWorkspace::EdgeContact& x, const MeshMeshWorkspace::EdgeContact& y)
   { return x.edgeOfA != y.edgeOfA ? x.edgeOfA < y.edgeOfA : x.edgeOfB < y.edgeOfB; };
   std::sort(workspace.edgeContacts.begin(), workspace.edgeContacts.end(), byEdges);
-  for (std::size_t k = 0; k < workspace.edgeContacts.size(); ++k)
+  // One contact per edge pair, none where an end has a vertex contact.
+  const std::size_t vertexContactsEnd = contacts.size();
+  workspace.touchingA.resize(pa.size(), 0);
+  workspace.touchingB.resize(pb.size(), 0);
+  auto markVertices = [&](char flag)
   {
-    const auto& e = workspace.edgeContacts[k];
-    if (k > 0 && e.edgeOfA == workspace.edgeContacts[k - 1].edgeOfA &&
-        e.edgeOfB == workspace.edgeContacts[k - 1].edgeOfB)
+    for (std::size_t k = firstContact; k < vertexContactsEnd; ++k)
     {
-      continue;
+      const FeatureContact& c = contacts[k];
+      if (c.verticesA[1] < 0)
+      {
+        workspace.touchingA[c.verticesA[0]] = flag;
+      }
+      if (c.verticesB[1] < 0)
+      {
+        workspace.touchingB[c.verticesB[0]] = flag;
+      }
     }
-    contacts.push_back(e.contact);
+  };
+  markVertices(1);
+  const auto& edges = workspace.edgeContacts;
+  for (std::size_t k = 0; k < edges.size(); ++k)
+  {
+    const FeatureContact& c = edges[k].contact;
+    const bool repeated =
+      k > 0 && edges[k].edgeOfA == edges[k - 1].edgeOfA && edges[k].edgeOfB == edges[k - 1].edgeOfB;
+    const bool heldByVertices =
+      workspace.touchingA[c.verticesA[0]] || workspace.touchingA[c.verticesA[1]] ||
+      workspace.touchingB[c.verticesB[0]] || workspace.touchingB[c.verticesB[1]];
+    if (!repeated && !heldByVertices)
+    {
+      contacts.push_back(c);
+    }
   }
+  markVertices(0);
 
   for (std::size_t k = firstContact; k < contacts.size(); ++k)
   {

@@ -29,6 +29,10 @@ struct ThickMeshView
   const std::vector<double>* radii = nullptr;
   const TriangleBvh* bvh = nullptr;
   const std::vector<Vector3>* vertexNormals = nullptr;
+  /// Added to the thickness in every query with this mesh (its BVH boxes
+  /// are inflated by it): contacts start when the thick surfaces are this
+  /// close, and the response holds them this far apart.
+  double contactDistance = 0.0;
 };
 
 ThickMeshView viewOf(const DeformableCollisionMesh& mesh);
@@ -80,12 +84,19 @@ struct MeshMeshWorkspace
     FeatureContact contact;
   };
   std::vector<EdgeContact> edgeContacts;
+  /// Vertices of A / B with a vertex-face contact (all false between calls).
+  std::vector<char> touchingA;
+  std::vector<char> touchingB;
 };
 
 /// Penetrating feature contacts between two thick meshes: every vertex of A
 /// against B's triangles and every vertex of B against A's (the deepest per
 /// vertex), and edge-edge pairs whose closest points are inside both edges
-/// (one per edge pair; the end points are the vertex contacts' business).
+/// (one per edge pair; the end points are the vertex contacts' business),
+/// kept only where no end of either edge has a vertex contact: there the
+/// vertex contacts already hold the surfaces (face to face), and edge-edge
+/// contacts would count the same overlap again; they are needed where
+/// edges cross with their ends free (a blade across a coarse triangle).
 /// Appends to `contacts`.
 void meshMeshContacts(const ThickMeshView& a,
   const ThickMeshView& b,

@@ -50,7 +50,9 @@ public:
   /// Throws InvalidInputError on a negative or non-finite radius or point.
   void addCapsule(const Vector3& handleSide, const Vector3& tipSide, double radius);
   /// The tool's triangle mesh (its full-resolution visual mesh, or a reduced
-  /// one), optional "Radius" per vertex; replaces an earlier mesh. Throws
+  /// one), optional "Radius" per vertex; replaces an earlier mesh. The
+  /// contact distance thickens it in every query (thesis 6.3: the distance
+  /// tuned so that the visual models do not interpenetrate). Throws
   /// InvalidInputError naming the mesh on inconsistent data or negative
   /// radii.
   void setMesh(const TriangleMesh& mesh, double contactDistance = 0.0);
@@ -84,6 +86,7 @@ public:
   const std::vector<Triangle>& meshTriangles() const { return MeshTriangles; }
   const std::vector<double>& meshRadii() const { return MeshRadii; }
   const TriangleBvh& meshBvh() const { return MeshBvh; }
+  double meshContactDistance() const { return MeshContactDistance; }
   /// Box of every primitive with its radius (empty for a tool without any).
   BoundingBox bounds() const;
 

@@ -44,7 +44,9 @@ class THINTISSUESOLVER_EXPORT DeformableCollisionMesh
 {
 public:
   /// `collision` holds rest positions, triangles and the "Radius" array
-  /// (zero radii when absent); `hexahedra` the rest simulation mesh.
+  /// (zero radii when absent); `hexahedra` the rest simulation mesh. The
+  /// contact distance (>= 0) thickens the mesh in every contact query: the
+  /// response keeps other bodies that far from its thick surface.
   DeformableCollisionMesh(const TriangleMesh& collision,
     const HexahedralMesh& hexahedra,
     double contactDistance = 0.0);
@@ -86,7 +88,8 @@ THINTISSUESOLVER_EXPORT void findToolContacts(const DeformableCollisionMesh& tis
   std::vector<ToolContact>& contacts);
 
 /// A rigid obstacle (bone, cartilage treated as rigid, 5.4.4): a closed or
-/// open triangle mesh, optionally with radii, and its BVH.
+/// open triangle mesh, optionally with radii, and its BVH; the contact
+/// distance thickens it in every query.
 class THINTISSUESOLVER_EXPORT StaticObstacle
 {
 public:
@@ -94,6 +97,7 @@ public:
   const TriangleMesh& surface() const { return Surface; }
   const std::vector<double>& radii() const { return Radii; }
   const TriangleBvh& bvh() const { return Bvh; }
+  double contactDistance() const { return Bvh.contactDistance(); }
 
 private:
   TriangleMesh Surface;

@@ -207,6 +207,51 @@ TEST(CollisionScene, BroadPhaseSkipsDistantBodies)
   EXPECT_EQ(s.scene.contactCountOnSide(0, -1), 0);
 }
 
+TEST(CollisionScene, ContactDistanceThickensTheSurfaces)
+{
+  // Tissue contact distance 0.5 and floor contact distance 0.25: a sphere
+  // 0.3 above the thick sheet is in contact (depth 0.2), a tissue vertex
+  // 0.6 above the floor's surface too (depth 0.15).
+  TissueModel sheet = makeThinSheet(thesisSheetCollisionResolution(1));
+  CorotationalHexFem fem(sheet.simulation, softTissue(), stepOf(0.01));
+  DeformableCollisionMesh collision(sheet.collision, sheet.simulation, 0.5);
+  TriangleMesh low = floorSurface(80.0, 2);
+  for (auto& p : low.positions)
+  {
+    p.z() -= 1.0 + 0.6;
+  }
+  const StaticObstacle floor(low, 0.25);
+  RigidTool tool;
+  tool.addSphere(Vector3::Zero(), 1.0);
+  tool.setPose(translation(Vector3(3.0, 2.0, 1.0 + 1.0 + 0.3)));
+  CollisionScene scene;
+  scene.addTissue(fem, collision);
+  scene.addTool(tool);
+  scene.addObstacle(floor);
+  scene.detectContacts();
+  int toolContacts = 0;
+  int floorContacts = 0;
+  for (const SceneContact& c : scene.contacts())
+  {
+    if (c.second.kind == SceneBodyKind::Tool)
+    {
+      ++toolContacts;
+      EXPECT_NEAR(c.depth, 0.2, 1e-9);
+    }
+    else
+    {
+      ++floorContacts;
+      EXPECT_NEAR(c.depth, 0.5 + 0.25 - 0.6, 1e-9);
+      EXPECT_EQ(c.sideOnFirst, -1);
+    }
+  }
+  EXPECT_EQ(toolContacts, 1);
+  // Every tissue vertex on the floor, and the floor's one vertex under the
+  // sheet (its centre) on a tissue triangle; no edge-edge contact where
+  // the vertices hold the surfaces face to face.
+  EXPECT_EQ(floorContacts, static_cast<int>(collision.positions().size()) + 1);
+}
+
 TEST(CollisionScene, SpherePressedIntoTheSheetStopsAtTheRadii)
 {
   SheetWithTool s(2);
