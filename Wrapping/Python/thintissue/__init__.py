@@ -8,3 +8,4 @@ from vtkmodules import vtkCommonCore, vtkCommonDataModel, vtkCommonExecutionMode
 from .ThinTissueVTKCore import *  # noqa: F401,F403
 from .ThinTissueVTKModels import *  # noqa: F401,F403
 from .ThinTissueVTKSolver import *  # noqa: F401,F403
+from .ThinTissueVTKBinding import *  # noqa: F401,F403

@@ -1,0 +1,1003 @@
+#include "VisualCollisionBinding.h"
+
+#include "GeodesicPaths.h"
+#include "MeshQueries.h"
+#include "MeshValidation.h"
+#include "PathRemeshing.h"
+#include "TriangleMeshAdjacency.h"
+
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace thintissue
+{
+
+namespace
+{
+
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+void report(const BindingProgress& progress, double fraction, const char* stage)
+{
+  if (progress && !progress(fraction, stage))
+  {
+    throw BindingAbortedError("visual-collision binding aborted during " + std::string(stage));
+  }
+}
+
+std::string nameOf(const TriangleMesh& mesh, const char* role)
+{
+  return std::string(role) + " mesh '" + mesh.name + "'";
+}
+
+/// Nearest intersection of the ray origin + t direction (t > 0) with the
+/// surface: t and triangle (infinity, -1 when it misses). Möller-Trumbore.
+std::pair<double, int> nearestRayHit(const TriangleMesh& mesh,
+  const Vector3& origin,
+  const Vector3& direction)
+{
+  double best = Infinity;
+  int bestTriangle = -1;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+  {
+    const Triangle& tri = mesh.triangles[t];
+    const Vector3& a = mesh.positions[tri[0]];
+    const Vector3 e1 = mesh.positions[tri[1]] - a;
+    const Vector3 e2 = mesh.positions[tri[2]] - a;
+    const Vector3 p = direction.cross(e2);
+    const double det = e1.dot(p);
+    if (std::abs(det) < 1e-300)
+    {
+      continue;
+    }
+    const double inverse = 1.0 / det;
+    const Vector3 s = origin - a;
+    const double u = s.dot(p) * inverse;
+    if (u < -1e-12 || u > 1.0 + 1e-12)
+    {
+      continue;
+    }
+    const Vector3 q = s.cross(e1);
+    const double v = direction.dot(q) * inverse;
+    if (v < -1e-12 || u + v > 1.0 + 1e-12)
+    {
+      continue;
+    }
+    const double distance = e2.dot(q) * inverse;
+    if (distance > 0.0 && distance < best)
+    {
+      best = distance;
+      bestTriangle = static_cast<int>(t);
+    }
+  }
+  return { best, bestTriangle };
+}
+
+/// Visual vertices within `rings` rings of the given seed vertices.
+std::vector<int> ringNeighbourhood(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency,
+  std::vector<int> seeds,
+  int rings)
+{
+  std::vector<int> found = seeds;
+  std::vector<int> frontier = std::move(seeds);
+  for (int ring = 0; ring < rings; ++ring)
+  {
+    std::vector<int> next;
+    for (int v : frontier)
+    {
+      for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
+           ++t)
+      {
+        for (int w : mesh.triangles[*t])
+        {
+          if (std::find(found.begin(), found.end(), w) == found.end())
+          {
+            found.push_back(w);
+            next.push_back(w);
+          }
+        }
+      }
+    }
+    frontier = std::move(next);
+  }
+  return found;
+}
+
+double distanceToLine(const Vector3& point, const Vector3& origin, const Vector3& unitDirection)
+{
+  const Vector3 offset = point - origin;
+  return (offset - offset.dot(unitDirection) * unitDirection).norm();
+}
+
+std::uint64_t edgeKey(int a, int b)
+{
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+/// One collision vertex's wish for a visual vertex on one side (slot 0: +,
+/// slot 1: -), candidates best first.
+struct PairingClaim
+{
+  int collisionVertex = -1;
+  int slot = 0;
+  std::vector<std::pair<double, int>> candidates; // (distance, visual vertex)
+};
+
+} // namespace
+
+//------------------------------------------------------------------------------
+Vector3 VisualCollisionBinding::projectedPoint(std::size_t v,
+  const std::vector<Vector3>& positions) const
+{
+  const VisualVertexBinding& b = vertices[v];
+  switch (b.kind)
+  {
+    case BindingKind::CollisionVertex:
+      return positions[b.element];
+    case BindingKind::CollisionEdge:
+    {
+      const auto& e = collisionEdges[b.element];
+      return b.parameters[0] * positions[e[0]] + b.parameters[1] * positions[e[1]];
+    }
+    case BindingKind::CollisionTriangle:
+    default:
+    {
+      const Triangle& t = collisionTriangles[b.element];
+      return b.parameters[0] * positions[t[0]] + b.parameters[1] * positions[t[1]] +
+             b.parameters[2] * positions[t[2]];
+    }
+  }
+}
+
+Vector3 VisualCollisionBinding::parametersInTriangle(std::size_t v, int t) const
+{
+  const VisualVertexBinding& b = vertices[v];
+  const Triangle& tri = collisionTriangles[t];
+  Vector3 result = Vector3::Zero();
+  switch (b.kind)
+  {
+    case BindingKind::CollisionVertex:
+      for (int k = 0; k < 3; ++k)
+      {
+        if (tri[k] == b.element)
+        {
+          result[k] = 1.0;
+          return result;
+        }
+      }
+      break;
+    case BindingKind::CollisionEdge:
+    {
+      const auto& e = collisionEdges[b.element];
+      int first = -1;
+      int second = -1;
+      for (int k = 0; k < 3; ++k)
+      {
+        first = tri[k] == e[0] ? k : first;
+        second = tri[k] == e[1] ? k : second;
+      }
+      if (first >= 0 && second >= 0)
+      {
+        result[first] = b.parameters[0];
+        result[second] = b.parameters[1];
+        return result;
+      }
+      break;
+    }
+    case BindingKind::CollisionTriangle:
+      if (b.element == t)
+      {
+        return b.parameters;
+      }
+      break;
+  }
+  throw InvalidInputError("visual-collision binding: visual vertex " + std::to_string(v) +
+                          " is not bound to collision triangle " + std::to_string(t) +
+                          " or one of its edges or vertices");
+}
+
+int VisualCollisionBinding::collisionEdgeIndex(int a, int b) const
+{
+  const std::array<int, 2> key{ { std::min(a, b), std::max(a, b) } };
+  const auto it = std::lower_bound(collisionEdges.begin(), collisionEdges.end(), key);
+  return it != collisionEdges.end() && *it == key ? static_cast<int>(it - collisionEdges.begin())
+                                                  : -1;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+
+/// What the binding needs of the collision mesh.
+struct CollisionTopology
+{
+  std::vector<std::array<int, 2>> edges; // sorted (lower, higher)
+  std::vector<int> edgeTriangleCount;
+  std::vector<char> borderVertex;
+  std::vector<Vector3> vertexNormals; // unit, area-weighted
+};
+
+CollisionTopology analyseCollision(const TriangleMesh& collision)
+{
+  CollisionTopology topology;
+  std::unordered_map<std::uint64_t, int> triangleCount;
+  for (const Triangle& t : collision.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++triangleCount[edgeKey(t[k], t[(k + 1) % 3])];
+    }
+  }
+  for (const auto& [key, count] : triangleCount)
+  {
+    if (count > 2)
+    {
+      throw InvalidInputError(nameOf(collision, "collision") + ": edge (" +
+                              std::to_string(key >> 32) + ", " +
+                              std::to_string(key & 0xffffffffu) + ") has " +
+                              std::to_string(count) + " triangles (non-manifold)");
+    }
+    topology.edges.push_back(
+      { { static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu) } });
+  }
+  std::sort(topology.edges.begin(), topology.edges.end());
+  topology.borderVertex.assign(collision.vertexCount(), 0);
+  for (const auto& e : topology.edges)
+  {
+    const int count = triangleCount[edgeKey(e[0], e[1])];
+    topology.edgeTriangleCount.push_back(count);
+    if (count == 1)
+    {
+      topology.borderVertex[e[0]] = 1;
+      topology.borderVertex[e[1]] = 1;
+    }
+  }
+  topology.vertexNormals.assign(collision.vertexCount(), Vector3::Zero());
+  for (const Triangle& t : collision.triangles)
+  {
+    const Vector3 n = (collision.positions[t[1]] - collision.positions[t[0]])
+                        .cross(collision.positions[t[2]] - collision.positions[t[0]]);
+    for (int k = 0; k < 3; ++k)
+    {
+      topology.vertexNormals[t[k]] += n;
+    }
+  }
+  for (std::size_t v = 0; v < collision.vertexCount(); ++v)
+  {
+    if (topology.vertexNormals[v].norm() == 0.0)
+    {
+      throw InvalidInputError(nameOf(collision, "collision") + ": vertex " + std::to_string(v) +
+                              " belongs to no triangle of non-zero area");
+    }
+    topology.vertexNormals[v].normalize();
+  }
+  return topology;
+}
+
+void checkInputs(const TriangleMesh& visual,
+  const TriangleMesh& collision,
+  const std::vector<double>& radii,
+  const VisualCollisionBindingSettings& settings)
+{
+  visual.checkConsistency();
+  collision.checkConsistency();
+  if (visual.triangles.empty())
+  {
+    throw InvalidInputError(nameOf(visual, "visual") + " has no triangles");
+  }
+  if (collision.triangles.empty())
+  {
+    throw InvalidInputError(nameOf(collision, "collision") + " has no triangles");
+  }
+  const MeshValidationReport report = validateTriangleMesh(visual);
+  auto fail = [&](const char* what, const ValidationFinding& finding)
+  {
+    throw InvalidInputError(nameOf(visual, "visual") + " must be closed, manifold and " +
+                            "consistently oriented: " + std::to_string(finding.count) + " " +
+                            what + ", first at " + finding.firstLocation);
+  };
+  if (report.nonManifoldEdges.count > 0)
+  {
+    fail("non-manifold edges", report.nonManifoldEdges);
+  }
+  if (report.nonManifoldVertices.count > 0)
+  {
+    fail("non-manifold vertices", report.nonManifoldVertices);
+  }
+  if (report.borderEdges.count > 0)
+  {
+    fail("border edges (the surface is open)", report.borderEdges);
+  }
+  if (report.inconsistentlyOrientedEdges.count > 0)
+  {
+    fail("inconsistently oriented edges", report.inconsistentlyOrientedEdges);
+  }
+  if (report.degenerateTriangles.count > 0)
+  {
+    fail("degenerate triangles", report.degenerateTriangles);
+  }
+  if (report.signedVolume <= 0.0)
+  {
+    throw InvalidInputError(nameOf(visual, "visual") +
+                            " faces inward (negative enclosed volume): flip its triangles");
+  }
+  if (!collision.pointAttributes.has(settings.radiusArrayName))
+  {
+    throw InvalidInputError(nameOf(collision, "collision") + " has no per-vertex '" +
+                            settings.radiusArrayName + "' array (the radii)");
+  }
+  for (std::size_t v = 0; v < radii.size(); ++v)
+  {
+    if (!(radii[v] > 0.0) || !std::isfinite(radii[v]))
+    {
+      throw InvalidInputError(nameOf(collision, "collision") + ": vertex " + std::to_string(v) +
+                              " has radius " + std::to_string(radii[v]) +
+                              " (radii must be positive)");
+    }
+  }
+  // Inside the visual volume (or on its surface, within the tolerance).
+  const double tolerance = settings.insideTolerance * visual.boundingBox().diagonal().norm();
+  std::vector<char> outside(collision.vertexCount(), 0);
+  tbb::parallel_for(std::size_t(0),
+    collision.vertexCount(),
+    [&](std::size_t v)
+    {
+      const Vector3& p = collision.positions[v];
+      outside[v] = windingNumber(visual, p) < 0.5 && distanceToSurface(visual, p) > tolerance;
+    });
+  const auto first = std::find(outside.begin(), outside.end(), 1);
+  if (first != outside.end())
+  {
+    const auto v = static_cast<std::size_t>(first - outside.begin());
+    throw InvalidInputError(nameOf(collision, "collision") + ": vertex " + std::to_string(v) +
+                            " lies outside the visual volume of " + nameOf(visual, "visual") +
+                            " (the collision mid-surface must lie inside the visual surface)");
+  }
+}
+
+/// 5.2.1: the visual vertex of every collision vertex and side.
+std::vector<std::array<int, 2>> pairCollisionVertices(const TriangleMesh& visual,
+  const TriangleMeshAdjacency& visualAdjacency,
+  const TriangleMesh& collision,
+  const std::vector<double>& radii,
+  const CollisionTopology& topology,
+  const VisualCollisionBindingSettings& settings)
+{
+  const std::size_t n = collision.vertexCount();
+  std::vector<PairingClaim> claims(2 * n);
+  std::vector<std::string> errors(2 * n);
+  tbb::parallel_for(std::size_t(0),
+    2 * n,
+    [&](std::size_t c)
+    {
+      const auto v = static_cast<int>(c / 2);
+      const int slot = static_cast<int>(c % 2);
+      PairingClaim& claim = claims[c];
+      claim.collisionVertex = v;
+      claim.slot = slot;
+      const Vector3& origin = collision.positions[v];
+      const double reach = settings.thinnessFactor * radii[v];
+      if (topology.borderVertex[v])
+      {
+        if (slot == 1)
+        {
+          return; // one visual vertex for both sides
+        }
+        // The closest visual vertices (a short list for conflicts).
+        for (std::size_t w = 0; w < visual.vertexCount(); ++w)
+        {
+          claim.candidates.emplace_back((visual.positions[w] - origin).norm(), static_cast<int>(w));
+        }
+        const std::size_t keep = std::min<std::size_t>(16, claim.candidates.size());
+        std::partial_sort(
+          claim.candidates.begin(), claim.candidates.begin() + keep, claim.candidates.end());
+        claim.candidates.resize(keep);
+        if (claim.candidates.front().first > reach)
+        {
+          errors[c] = nameOf(visual, "visual") + " is not thin at border collision vertex " +
+                      std::to_string(v) + ": its closest visual vertex is " +
+                      std::to_string(claim.candidates.front().first) + " away, more than " +
+                      std::to_string(settings.thinnessFactor) + " radii";
+        }
+        return;
+      }
+      const Vector3 direction = (slot == 0 ? 1.0 : -1.0) * topology.vertexNormals[v];
+      const auto [distance, triangle] = nearestRayHit(visual, origin, direction);
+      if (triangle < 0)
+      {
+        errors[c] = "collision vertex " + std::to_string(v) + " has no visual vertex on its " +
+                    (slot == 0 ? "positive" : "negative") +
+                    " side: its normal ray does not meet " + nameOf(visual, "visual");
+        return;
+      }
+      if (distance > reach)
+      {
+        errors[c] = nameOf(visual, "visual") + " is not thin at collision vertex " +
+                    std::to_string(v) + ": along its " + (slot == 0 ? "positive" : "negative") +
+                    " normal the surface is " + std::to_string(distance) + " away, more than " +
+                    std::to_string(settings.thinnessFactor) + " radii";
+        return;
+      }
+      const Triangle& hit = visual.triangles[triangle];
+      const std::vector<int> nearby =
+        ringNeighbourhood(visual, visualAdjacency, { hit[0], hit[1], hit[2] }, 2);
+      for (int w : nearby)
+      {
+        // Only vertices on this side of the collision vertex.
+        if ((visual.positions[w] - origin).dot(direction) > 0.0)
+        {
+          claim.candidates.emplace_back(
+            distanceToLine(visual.positions[w], origin, direction), w);
+        }
+      }
+      std::sort(claim.candidates.begin(), claim.candidates.end());
+    });
+  for (const std::string& error : errors)
+  {
+    if (!error.empty())
+    {
+      throw InvalidInputError(error);
+    }
+  }
+  // No visual vertex serves two collision vertices: the closest claims
+  // choose first, the others take their next candidate.
+  std::vector<std::size_t> order;
+  for (std::size_t c = 0; c < claims.size(); ++c)
+  {
+    if (!claims[c].candidates.empty())
+    {
+      order.push_back(c);
+    }
+  }
+  std::sort(order.begin(),
+    order.end(),
+    [&](std::size_t x, std::size_t y)
+    {
+      const auto& cx = claims[x].candidates.front();
+      const auto& cy = claims[y].candidates.front();
+      return cx.first != cy.first ? cx.first < cy.first : x < y;
+    });
+  std::vector<char> taken(visual.vertexCount(), 0);
+  std::vector<std::array<int, 2>> paired(n, { { -1, -1 } });
+  for (std::size_t c : order)
+  {
+    const PairingClaim& claim = claims[c];
+    for (const auto& [distance, w] : claim.candidates)
+    {
+      if (!taken[w])
+      {
+        taken[w] = 1;
+        paired[claim.collisionVertex][claim.slot] = w;
+        break;
+      }
+    }
+    if (paired[claim.collisionVertex][claim.slot] < 0)
+    {
+      throw InvalidInputError(
+        "collision vertex " + std::to_string(claim.collisionVertex) + " of " +
+        nameOf(collision, "collision") + " finds no free visual vertex on its " +
+        (topology.borderVertex[claim.collisionVertex] ? "rim"
+                                                       : (claim.slot == 0 ? "positive side"
+                                                                          : "negative side")) +
+        ": its neighbours took them all (the visual mesh is too coarse there)");
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    if (topology.borderVertex[v])
+    {
+      paired[v][1] = paired[v][0];
+    }
+  }
+  return paired;
+}
+
+/// Binding of one region's vertices (5.2.4): boundary on the collision
+/// triangle by accumulated path length, inside by mean value coordinates.
+class RegionParameterisation
+{
+public:
+  explicit RegionParameterisation(std::size_t visualVertexCount)
+    : Local(visualVertexCount, -1)
+    , Boundary(visualVertexCount, 0)
+  {
+  }
+
+  /// `triangles`: the region's visual triangles; `boundary`: its boundary
+  /// vertices with their positions in the collision triangle's 2D frame.
+  /// Writes the barycentric parameters of every other vertex of the region
+  /// whose binding is CollisionTriangle.
+  void solve(const TriangleMesh& mesh,
+    const std::vector<int>& triangles,
+    const std::vector<std::pair<int, Vector2>>& boundary,
+    const std::array<Vector2, 3>& corners,
+    std::vector<VisualVertexBinding>& bindings)
+  {
+    std::vector<int> interior;
+    for (const auto& [v, p] : boundary)
+    {
+      Boundary[v] = 1;
+      BoundaryPosition[v] = p;
+    }
+    for (int t : triangles)
+    {
+      for (int v : mesh.triangles[t])
+      {
+        if (!Boundary[v] && Local[v] < 0)
+        {
+          Local[v] = static_cast<int>(interior.size());
+          interior.push_back(v);
+        }
+      }
+    }
+    const auto size = static_cast<Eigen::Index>(interior.size());
+    if (size > 0)
+    {
+      // Floater's mean value weights from the rest angles: for triangle
+      // (i, j, k) the angle at i adds tan(angle/2)/|x_j - x_i| to w_ij and
+      // tan(angle/2)/|x_k - x_i| to w_ik.
+      std::vector<Eigen::Triplet<double>> entries;
+      Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(size, 2);
+      Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(size);
+      for (int t : triangles)
+      {
+        const Triangle& tri = mesh.triangles[t];
+        for (int k = 0; k < 3; ++k)
+        {
+          const int i = tri[k];
+          if (Local[i] < 0)
+          {
+            continue;
+          }
+          const int j = tri[(k + 1) % 3];
+          const int l = tri[(k + 2) % 3];
+          const Vector3 toJ = mesh.positions[j] - mesh.positions[i];
+          const Vector3 toL = mesh.positions[l] - mesh.positions[i];
+          const double angle = std::atan2(toJ.cross(toL).norm(), toJ.dot(toL));
+          const double halfTangent = std::tan(0.5 * angle);
+          for (const auto& [other, length] : { std::pair<int, double>(j, toJ.norm()),
+                 std::pair<int, double>(l, toL.norm()) })
+          {
+            const double w = halfTangent / length;
+            diagonal[Local[i]] += w;
+            if (Local[other] >= 0)
+            {
+              entries.emplace_back(Local[i], Local[other], -w);
+            }
+            else
+            {
+              rhs.row(Local[i]) += w * BoundaryPosition[other].transpose();
+            }
+          }
+        }
+      }
+      for (Eigen::Index i = 0; i < size; ++i)
+      {
+        entries.emplace_back(i, i, diagonal[i]);
+      }
+      Eigen::SparseMatrix<double> matrix(size, size);
+      matrix.setFromTriplets(entries.begin(), entries.end());
+      Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+      lu.compute(matrix);
+      if (lu.info() != Eigen::Success)
+      {
+        throw InvalidInputError("visual-collision binding: the mean value parameterisation of a "
+                                "region is singular (a region without boundary?)");
+      }
+      const Eigen::MatrixX2d solution = lu.solve(rhs);
+      // Barycentric coordinates in the collision triangle's 2D frame.
+      const Vector2 e1 = corners[1] - corners[0];
+      const Vector2 e2 = corners[2] - corners[0];
+      const double area = e1.x() * e2.y() - e1.y() * e2.x();
+      for (Eigen::Index i = 0; i < size; ++i)
+      {
+        VisualVertexBinding& b = bindings[interior[i]];
+        if (b.kind != BindingKind::CollisionTriangle)
+        {
+          continue;
+        }
+        const Vector2 d = solution.row(i).transpose() - corners[0];
+        double beta = (d.x() * e2.y() - d.y() * e2.x()) / area;
+        double gamma = (e1.x() * d.y() - e1.y() * d.x()) / area;
+        double alpha = 1.0 - beta - gamma;
+        // Round-off below zero only: the mapping of a disk onto a convex
+        // boundary by convex combinations stays inside (Floater).
+        alpha = std::max(alpha, 0.0);
+        beta = std::max(beta, 0.0);
+        gamma = std::max(gamma, 0.0);
+        const double sum = alpha + beta + gamma;
+        b.parameters = Vector3(alpha, beta, gamma) / sum;
+      }
+    }
+    for (int v : interior)
+    {
+      Local[v] = -1;
+    }
+    for (const auto& entry : boundary)
+    {
+      Boundary[entry.first] = 0;
+    }
+    BoundaryPosition.clear();
+  }
+
+private:
+  std::vector<int> Local;
+  std::vector<char> Boundary;
+  std::unordered_map<int, Vector2> BoundaryPosition;
+};
+
+} // namespace
+
+//------------------------------------------------------------------------------
+VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
+  const TriangleMesh& collision,
+  const VisualCollisionBindingSettings& settings,
+  const BindingProgress& progress)
+{
+  report(progress, 0.0, "checking the meshes");
+  const std::vector<double> radii = collision.pointAttributes.has(settings.radiusArrayName)
+                                      ? collision.pointAttributes.get(settings.radiusArrayName).values
+                                      : std::vector<double>();
+  checkInputs(visual, collision, radii, settings);
+  const CollisionTopology topology = analyseCollision(collision);
+  const TriangleMeshAdjacency visualAdjacency(visual);
+
+  // 5.2.1 Pairing.
+  report(progress, 0.05, "pairing collision and visual vertices");
+  VisualCollisionBinding binding;
+  binding.collisionPositions = collision.positions;
+  binding.collisionTriangles = collision.triangles;
+  binding.collisionEdges = topology.edges;
+  binding.pairedVisualVertices =
+    pairCollisionVertices(visual, visualAdjacency, collision, radii, topology, settings);
+
+  // 5.2.2 Geodesic paths: one per border edge, two per inner edge.
+  report(progress, 0.1, "computing geodesic paths");
+  struct PathRequest
+  {
+    int edge;
+    int side;
+    int source;
+    int target;
+  };
+  std::vector<PathRequest> requests;
+  for (std::size_t e = 0; e < topology.edges.size(); ++e)
+  {
+    const auto& edge = topology.edges[e];
+    const auto& a = binding.pairedVisualVertices[edge[0]];
+    const auto& b = binding.pairedVisualVertices[edge[1]];
+    if (topology.edgeTriangleCount[e] == 1)
+    {
+      requests.push_back({ static_cast<int>(e), 0, a[0], b[0] });
+      continue;
+    }
+    if (a[0] == a[1] && b[0] == b[1])
+    {
+      throw InvalidInputError(nameOf(collision, "collision") + ": inner edge (" +
+                              std::to_string(edge[0]) + ", " + std::to_string(edge[1]) +
+                              ") joins two border vertices; its positive and negative paths "
+                              "would both be the one shortest path between their rim vertices. "
+                              "Split the edge's triangles so that it has an inner vertex.");
+    }
+    requests.push_back({ static_cast<int>(e), 1, a[0], b[0] });
+    requests.push_back({ static_cast<int>(e), -1, a[1], b[1] });
+  }
+  const GeodesicPathFinder finder(visual, visualAdjacency);
+  std::vector<SurfacePath> surfacePaths(requests.size());
+  // In blocks, so that progress (and abort) is reported from this thread.
+  const std::size_t block = std::max<std::size_t>(1, requests.size() / 20);
+  for (std::size_t begin = 0; begin < requests.size(); begin += block)
+  {
+    const std::size_t end = std::min(requests.size(), begin + block);
+    auto computePath = [&](std::size_t k)
+    { surfacePaths[k] = finder.shortestPath(requests[k].source, requests[k].target); };
+    if (settings.parallel)
+    {
+      tbb::parallel_for(begin, end, computePath);
+    }
+    else
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        computePath(k);
+      }
+    }
+    report(progress,
+      0.1 + 0.6 * static_cast<double>(end) / static_cast<double>(requests.size()),
+      "computing geodesic paths");
+  }
+
+  // 5.2.3 Re-meshing along the paths.
+  report(progress, 0.7, "re-meshing the visual mesh along the paths");
+  RemeshedSurface remeshed = insertPaths(visual, surfacePaths);
+  binding.visual = std::move(remeshed.mesh);
+  const TriangleMesh& mesh = binding.visual;
+  for (std::size_t k = 0; k < requests.size(); ++k)
+  {
+    BindingPath path;
+    path.collisionEdge = requests[k].edge;
+    path.side = requests[k].side;
+    path.visualVertices = std::move(remeshed.pathVertices[k]);
+    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+    {
+      path.length +=
+        (mesh.positions[path.visualVertices[i]] - mesh.positions[path.visualVertices[i - 1]])
+          .norm();
+    }
+    binding.paths.push_back(std::move(path));
+  }
+
+  // Flood fill: path edges are barriers; each collision triangle and side
+  // is seeded beside its own paths.
+  report(progress, 0.8, "finding the regions of the collision triangles");
+  const TriangleMeshAdjacency adjacency(mesh);
+  std::vector<int> pathUses(adjacency.edgeCount(), 0);
+  for (const BindingPath& path : binding.paths)
+  {
+    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+    {
+      const int e = adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]);
+      if (e < 0)
+      {
+        throw InvalidInputError("visual-collision binding: re-meshing lost a path edge");
+      }
+      ++pathUses[e];
+    }
+  }
+  // Paths of each collision edge and side (border edges: side 0 for both).
+  std::vector<std::array<int, 3>> pathOfEdge(topology.edges.size(), { { -1, -1, -1 } });
+  for (std::size_t k = 0; k < binding.paths.size(); ++k)
+  {
+    pathOfEdge[binding.paths[k].collisionEdge][binding.paths[k].side + 1] = static_cast<int>(k);
+  }
+  auto pathFor = [&](int edge, int side)
+  {
+    const auto& candidates = pathOfEdge[edge];
+    return candidates[1] >= 0 ? candidates[1] : candidates[side + 1];
+  };
+  const std::size_t triangleCount = mesh.triangles.size();
+  binding.triangleRegion.assign(triangleCount, -1);
+  binding.triangleSide.assign(triangleCount, 0);
+  std::vector<int> regionLabel(triangleCount, -1); // 2 t + (side < 0)
+  std::vector<std::vector<int>> regionTriangles(2 * collision.triangles.size());
+  auto triangleLeftOf = [&](int u, int w) -> int
+  {
+    // The triangle in which u -> w runs counter-clockwise.
+    const int e = adjacency.findEdge(u, w);
+    for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
+    {
+      const Triangle& tri = mesh.triangles[*t];
+      for (int k = 0; k < 3; ++k)
+      {
+        if (tri[k] == u && tri[(k + 1) % 3] == w)
+        {
+          return *t;
+        }
+      }
+    }
+    return -1;
+  };
+  std::vector<int> stack;
+  for (std::size_t t = 0; t < collision.triangles.size(); ++t)
+  {
+    const Triangle& ct = collision.triangles[t];
+    for (int side : { 1, -1 })
+    {
+      const int label = 2 * static_cast<int>(t) + (side < 0 ? 1 : 0);
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = ct[k];
+        const int b = ct[(k + 1) % 3];
+        const int edge = binding.collisionEdgeIndex(a, b);
+        const BindingPath& path = binding.paths[pathFor(edge, side)];
+        const bool forward = topology.edges[edge][0] == a;
+        // A segment of this path that no other path uses.
+        int seed = -1;
+        const auto& pv = path.visualVertices;
+        for (std::size_t i = 1; i < pv.size() && seed < 0; ++i)
+        {
+          int u = pv[i - 1];
+          int w = pv[i];
+          if (!forward)
+          {
+            std::swap(u, w);
+          }
+          if (pathUses[adjacency.findEdge(u, w)] == 1)
+          {
+            seed = side > 0 ? triangleLeftOf(u, w) : triangleLeftOf(w, u);
+          }
+        }
+        if (seed < 0)
+        {
+          throw InvalidInputError("visual-collision binding: every segment of the " +
+                                  std::string(side > 0 ? "positive" : "negative") +
+                                  " path of collision edge (" + std::to_string(a) + ", " +
+                                  std::to_string(b) +
+                                  ") is shared with another path; the region of collision "
+                                  "triangle " +
+                                  std::to_string(t) + " has no width there");
+        }
+        if (regionLabel[seed] == label)
+        {
+          continue;
+        }
+        if (regionLabel[seed] >= 0)
+        {
+          throw InvalidInputError(
+            "visual-collision binding: the regions of collision triangles " + std::to_string(t) +
+            " and " + std::to_string(regionLabel[seed] / 2) +
+            " are not separated by their paths (paths cross or the collision mesh folds)");
+        }
+        if (!regionTriangles[label].empty())
+        {
+          throw InvalidInputError("visual-collision binding: the " +
+                                  std::string(side > 0 ? "positive" : "negative") +
+                                  " region of collision triangle " + std::to_string(t) +
+                                  " falls apart into several pieces (its paths cross others)");
+        }
+        regionLabel[seed] = label;
+        stack.assign(1, seed);
+        while (!stack.empty())
+        {
+          const int current = stack.back();
+          stack.pop_back();
+          regionTriangles[label].push_back(current);
+          const auto& edges = adjacency.triangleEdges(current);
+          for (int j = 0; j < 3; ++j)
+          {
+            if (pathUses[edges[j]] > 0)
+            {
+              continue;
+            }
+            const int next = adjacency.neighbourAcross(current, j);
+            if (next >= 0 && regionLabel[next] < 0)
+            {
+              regionLabel[next] = label;
+              stack.push_back(next);
+            }
+            else if (next >= 0 && regionLabel[next] != label)
+            {
+              throw InvalidInputError("visual-collision binding: the regions of collision "
+                                      "triangles " +
+                                      std::to_string(t) + " and " +
+                                      std::to_string(regionLabel[next] / 2) + " touch");
+            }
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t t = 0; t < triangleCount; ++t)
+  {
+    if (regionLabel[t] < 0)
+    {
+      throw InvalidInputError("visual-collision binding: visual triangle " + std::to_string(t) +
+                              " (at vertex " + std::to_string(mesh.triangles[t][0]) +
+                              ") is enclosed by no collision triangle's paths");
+    }
+    binding.triangleRegion[t] = regionLabel[t] / 2;
+    binding.triangleSide[t] = static_cast<std::int8_t>(regionLabel[t] % 2 == 0 ? 1 : -1);
+  }
+
+  // Vertex bindings: paired vertices, then path vertices, then the rest.
+  report(progress, 0.85, "assigning local parameters");
+  binding.vertices.assign(mesh.positions.size(), VisualVertexBinding());
+  std::vector<char> assigned(mesh.positions.size(), 0);
+  for (std::size_t v = 0; v < binding.pairedVisualVertices.size(); ++v)
+  {
+    const auto& pair = binding.pairedVisualVertices[v];
+    for (int slot = 0; slot < 2; ++slot)
+    {
+      VisualVertexBinding& b = binding.vertices[pair[slot]];
+      b.kind = BindingKind::CollisionVertex;
+      b.element = static_cast<int>(v);
+      b.side = pair[0] == pair[1] ? 0 : (slot == 0 ? 1 : -1);
+      b.parameters = Vector3(1.0, 0.0, 0.0);
+      assigned[pair[slot]] = 1;
+    }
+  }
+  // Accumulated length along each path (fraction from the edge's first vertex).
+  std::vector<std::vector<double>> pathFractions(binding.paths.size());
+  for (std::size_t k = 0; k < binding.paths.size(); ++k)
+  {
+    const BindingPath& path = binding.paths[k];
+    auto& fractions = pathFractions[k];
+    fractions.assign(path.visualVertices.size(), 0.0);
+    double accumulated = 0.0;
+    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+    {
+      accumulated +=
+        (mesh.positions[path.visualVertices[i]] - mesh.positions[path.visualVertices[i - 1]])
+          .norm();
+      fractions[i] = path.length > 0.0 ? accumulated / path.length : 0.0;
+    }
+    for (std::size_t i = 1; i + 1 < path.visualVertices.size(); ++i)
+    {
+      const int v = path.visualVertices[i];
+      if (assigned[v])
+      {
+        continue; // shared with an earlier path: keeps that binding
+      }
+      assigned[v] = 1;
+      VisualVertexBinding& b = binding.vertices[v];
+      b.kind = BindingKind::CollisionEdge;
+      b.element = path.collisionEdge;
+      b.side = path.side;
+      b.parameters = Vector3(1.0 - fractions[i], fractions[i], 0.0);
+    }
+  }
+  for (std::size_t t = 0; t < triangleCount; ++t)
+  {
+    for (int v : mesh.triangles[t])
+    {
+      if (!assigned[v])
+      {
+        assigned[v] = 1;
+        VisualVertexBinding& b = binding.vertices[v];
+        b.kind = BindingKind::CollisionTriangle;
+        b.element = binding.triangleRegion[t];
+        b.side = binding.triangleSide[t];
+      }
+    }
+  }
+  // Mean value coordinates per region, the boundary fixed on the collision
+  // triangle (laid out in its own plane).
+  RegionParameterisation parameterisation(mesh.positions.size());
+  std::vector<std::pair<int, Vector2>> boundary;
+  for (std::size_t t = 0; t < collision.triangles.size(); ++t)
+  {
+    const Triangle& ct = collision.triangles[t];
+    const Vector3& p0 = collision.positions[ct[0]];
+    const Vector3& p1 = collision.positions[ct[1]];
+    const Vector3& p2 = collision.positions[ct[2]];
+    const double l01 = (p1 - p0).norm();
+    const Vector3 x = (p1 - p0) / l01;
+    const Vector3 y = (p2 - p0 - (p2 - p0).dot(x) * x).normalized();
+    const std::array<Vector2, 3> corners{ { Vector2(0.0, 0.0),
+      Vector2(l01, 0.0),
+      Vector2((p2 - p0).dot(x), (p2 - p0).dot(y)) } };
+    for (int side : { 1, -1 })
+    {
+      boundary.clear();
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = ct[k];
+        const int b = ct[(k + 1) % 3];
+        const int edge = binding.collisionEdgeIndex(a, b);
+        const int p = pathFor(edge, side);
+        const bool forward = topology.edges[edge][0] == a;
+        const auto& pv = binding.paths[p].visualVertices;
+        for (std::size_t i = 0; i < pv.size(); ++i)
+        {
+          const double fromA = forward ? pathFractions[p][i] : 1.0 - pathFractions[p][i];
+          const Vector2 position = (1.0 - fromA) * corners[k] + fromA * corners[(k + 1) % 3];
+          boundary.emplace_back(pv[i], position);
+        }
+      }
+      parameterisation.solve(mesh,
+        regionTriangles[2 * t + (side < 0 ? 1 : 0)],
+        boundary,
+        corners,
+        binding.vertices);
+    }
+    if (t % 16 == 0)
+    {
+      report(progress,
+        0.85 + 0.15 * static_cast<double>(t) / collision.triangles.size(),
+        "assigning local parameters");
+    }
+  }
+  report(progress, 1.0, "done");
+  return binding;
+}
+
+} // namespace thintissue

@@ -1,0 +1,392 @@
+// The visual-collision binding (thesis 5.2) on the thesis's sheet and
+// meniscus: every visual vertex bound once with parameters inside its
+// collision triangle, one disk per collision triangle and side, the surface
+// unchanged, paths continuous and no longer than edge paths, determinism,
+// bad input, and the binding file.
+#include "BindingCache.h"
+#include "GeodesicPaths.h"
+#include "MeniscusModel.h"
+#include "MeshQueries.h"
+#include "MeshValidation.h"
+#include "ThinSheetModel.h"
+#include "TriangleMeshAdjacency.h"
+#include "VisualCollisionBinding.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+using namespace thintissue;
+
+namespace
+{
+const TissueModel& sheet()
+{
+  static const TissueModel model = makeThinSheet(thesisSheetVisualResolution(1));
+  return model;
+}
+
+const VisualCollisionBinding& sheetBinding()
+{
+  static const VisualCollisionBinding binding =
+    bindVisualToCollision(sheet().visual, sheet().collision);
+  return binding;
+}
+
+const MeniscusModel& meniscus()
+{
+  static const MeniscusModel model = makeMeniscus();
+  return model;
+}
+
+const VisualCollisionBinding& meniscusBinding()
+{
+  static const VisualCollisionBinding binding =
+    bindVisualToCollision(meniscus().visual, meniscus().collision);
+  return binding;
+}
+
+std::string temporaryPath(const std::string& name)
+{
+  return (std::filesystem::temp_directory_path() / ("thintissue-" + name)).string();
+}
+
+void checkBinding(const TriangleMesh& original,
+  const TriangleMesh& collision,
+  const VisualCollisionBinding& b)
+{
+  const TriangleMesh& mesh = b.visual;
+  ASSERT_EQ(b.vertices.size(), mesh.vertexCount());
+  ASSERT_EQ(b.triangleRegion.size(), mesh.triangleCount());
+
+  // The surface is the original one: closed, oriented, same area and
+  // volume; original vertices kept, new vertices on the original surface.
+  const MeshValidationReport report = validateTriangleMesh(mesh);
+  EXPECT_TRUE(report.isClosedOutwardSingleSurface()) << report.toString();
+  EXPECT_NEAR(mesh.surfaceArea(), original.surfaceArea(), 1e-9 * original.surfaceArea());
+  EXPECT_NEAR(mesh.signedVolume(), original.signedVolume(), 1e-9 * original.signedVolume());
+  const double scale = original.boundingBox().diagonal().norm();
+  for (std::size_t v = 0; v < original.vertexCount(); ++v)
+  {
+    ASSERT_EQ(mesh.positions[v], original.positions[v]);
+  }
+  double farthest = 0.0;
+  for (std::size_t v = original.vertexCount(); v < mesh.vertexCount(); v += 7)
+  {
+    farthest = std::max(farthest, distanceToSurface(original, mesh.positions[v]));
+  }
+  EXPECT_LT(farthest, 1e-12 * scale);
+
+  // Every visual vertex bound once, its parameters a point of its
+  // collision element.
+  std::set<int> pairedVertices;
+  for (std::size_t c = 0; c < b.pairedVisualVertices.size(); ++c)
+  {
+    for (int v : b.pairedVisualVertices[c])
+    {
+      EXPECT_EQ(b.vertices[v].kind, BindingKind::CollisionVertex);
+      EXPECT_EQ(b.vertices[v].element, static_cast<int>(c));
+      pairedVertices.insert(v);
+    }
+    if (b.pairedVisualVertices[c][0] != b.pairedVisualVertices[c][1])
+    {
+      EXPECT_EQ(pairedVertices.count(b.pairedVisualVertices[c][0]), 1u);
+    }
+  }
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+  {
+    const VisualVertexBinding& vb = b.vertices[v];
+    ASSERT_GE(vb.element, 0) << "vertex " << v;
+    EXPECT_GE(vb.parameters.minCoeff(), 0.0) << "vertex " << v;
+    EXPECT_LE(vb.parameters.maxCoeff(), 1.0) << "vertex " << v;
+    EXPECT_NEAR(vb.parameters.sum(), 1.0, 1e-12) << "vertex " << v;
+    if (vb.kind == BindingKind::CollisionTriangle)
+    {
+      // Reconstructed inside its collision triangle (barycentric >= 0).
+      const Vector3 p = b.projectedPoint(v, b.collisionPositions);
+      const Triangle& t = b.collisionTriangles[vb.element];
+      const Vector3 a = b.collisionPositions[t[0]];
+      const Vector3 n = (b.collisionPositions[t[1]] - a).cross(b.collisionPositions[t[2]] - a);
+      EXPECT_LT(std::abs((p - a).dot(n.normalized())), 1e-9 * scale);
+      EXPECT_NE(vb.side, 0);
+    }
+  }
+
+  // Regions: each collision triangle and side one topological disk (V - E
+  // + F = 1, one boundary loop), all together covering every visual
+  // triangle once (triangleRegion has one entry per triangle).
+  std::map<std::pair<int, int>, std::vector<int>> regions;
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    regions[{ b.triangleRegion[t], b.triangleSide[t] }].push_back(static_cast<int>(t));
+  }
+  EXPECT_EQ(regions.size(), 2 * collision.triangleCount());
+  for (const auto& [key, triangles] : regions)
+  {
+    std::set<int> vertices;
+    std::map<std::pair<int, int>, int> edges;
+    for (int t : triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const int u = mesh.triangles[t][k];
+        const int w = mesh.triangles[t][(k + 1) % 3];
+        vertices.insert(u);
+        ++edges[{ std::min(u, w), std::max(u, w) }];
+      }
+    }
+    const long euler = static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) +
+                       static_cast<long>(triangles.size());
+    EXPECT_EQ(euler, 1) << "region of collision triangle " << key.first << " side " << key.second;
+    // One boundary loop: boundary edges form one cycle.
+    std::map<int, std::vector<int>> boundaryNeighbours;
+    for (const auto& [edge, count] : edges)
+    {
+      if (count == 1)
+      {
+        boundaryNeighbours[edge.first].push_back(edge.second);
+        boundaryNeighbours[edge.second].push_back(edge.first);
+      }
+    }
+    std::size_t walked = 0;
+    if (!boundaryNeighbours.empty())
+    {
+      const int start = boundaryNeighbours.begin()->first;
+      int previous = -1;
+      int current = start;
+      do
+      {
+        ASSERT_EQ(boundaryNeighbours[current].size(), 2u) << "boundary vertex " << current;
+        const int next = boundaryNeighbours[current][0] != previous
+                           ? boundaryNeighbours[current][0]
+                           : boundaryNeighbours[current][1];
+        previous = current;
+        current = next;
+        ++walked;
+      } while (current != start && walked <= boundaryNeighbours.size());
+    }
+    EXPECT_EQ(walked, boundaryNeighbours.size());
+  }
+
+  // Paths: from the right vertices, along mesh edges, no longer than the
+  // edge path between the same vertices on the original mesh.
+  const TriangleMeshAdjacency adjacency(mesh);
+  const TriangleMeshAdjacency originalAdjacency(original);
+  const GeodesicPathFinder originalFinder(original, originalAdjacency);
+  for (const BindingPath& path : b.paths)
+  {
+    const auto& edge = b.collisionEdges[path.collisionEdge];
+    const int slot = path.side < 0 ? 1 : 0;
+    ASSERT_FALSE(path.visualVertices.empty());
+    EXPECT_EQ(path.visualVertices.front(), b.pairedVisualVertices[edge[0]][slot]);
+    EXPECT_EQ(path.visualVertices.back(), b.pairedVisualVertices[edge[1]][slot]);
+    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+    {
+      EXPECT_GE(adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]), 0);
+    }
+    const double edgePath =
+      originalFinder.edgePathLength(path.visualVertices.front(), path.visualVertices.back());
+    EXPECT_LE(path.length, edgePath * (1.0 + 1e-12));
+    EXPECT_GE(path.length,
+      (mesh.positions[path.visualVertices.front()] - mesh.positions[path.visualVertices.back()])
+          .norm() *
+        (1.0 - 1e-12));
+  }
+}
+} // namespace
+
+TEST(VisualCollisionBinding, SheetIsBoundExactly)
+{
+  SCOPED_TRACE("sheet model 1, collision model 1");
+  checkBinding(sheet().visual, sheet().collision, sheetBinding());
+}
+
+TEST(VisualCollisionBinding, MeniscusIsBoundExactly)
+{
+  checkBinding(meniscus().visual, meniscus().collision, meniscusBinding());
+}
+
+TEST(VisualCollisionBinding, ParametersPerTriangleFollowFigure5To6)
+{
+  const VisualCollisionBinding& b = sheetBinding();
+  // A vertex bound to an edge has its two parameters at that edge's
+  // vertices in either triangle beside it, zero at the third.
+  bool checked = false;
+  for (std::size_t v = 0; v < b.vertices.size() && !checked; ++v)
+  {
+    if (b.vertices[v].kind != BindingKind::CollisionEdge || b.vertices[v].side == 0)
+    {
+      continue;
+    }
+    const auto& e = b.collisionEdges[b.vertices[v].element];
+    for (std::size_t t = 0; t < b.collisionTriangles.size(); ++t)
+    {
+      const Triangle& tri = b.collisionTriangles[t];
+      const bool hasEdge = std::count(tri.begin(), tri.end(), e[0]) == 1 &&
+                           std::count(tri.begin(), tri.end(), e[1]) == 1;
+      if (!hasEdge)
+      {
+        EXPECT_THROW(b.parametersInTriangle(v, static_cast<int>(t)), InvalidInputError);
+        continue;
+      }
+      const Vector3 p = b.parametersInTriangle(v, static_cast<int>(t));
+      const Vector3 point = p[0] * b.collisionPositions[tri[0]] +
+                            p[1] * b.collisionPositions[tri[1]] +
+                            p[2] * b.collisionPositions[tri[2]];
+      EXPECT_LT((point - b.projectedPoint(v, b.collisionPositions)).norm(), 1e-12);
+      checked = true;
+    }
+  }
+  EXPECT_TRUE(checked);
+}
+
+TEST(VisualCollisionBinding, SameInputSameOutputBitForBit)
+{
+  VisualCollisionBindingSettings serial;
+  serial.parallel = false;
+  const VisualCollisionBinding again = bindVisualToCollision(sheet().visual, sheet().collision, serial);
+  const VisualCollisionBinding& first = sheetBinding();
+  ASSERT_EQ(again.visual.positions.size(), first.visual.positions.size());
+  EXPECT_TRUE(again.visual.positions == first.visual.positions);
+  EXPECT_TRUE(again.visual.triangles == first.visual.triangles);
+  EXPECT_TRUE(again.visual.textureCoordinates == first.visual.textureCoordinates);
+  EXPECT_TRUE(again.triangleRegion == first.triangleRegion);
+  ASSERT_EQ(again.vertices.size(), first.vertices.size());
+  for (std::size_t v = 0; v < again.vertices.size(); ++v)
+  {
+    ASSERT_EQ(again.vertices[v].kind, first.vertices[v].kind);
+    ASSERT_EQ(again.vertices[v].element, first.vertices[v].element);
+    ASSERT_EQ(again.vertices[v].parameters, first.vertices[v].parameters) << v;
+  }
+}
+
+TEST(VisualCollisionBinding, BadInputIsNamed)
+{
+  auto expectError = [](const TriangleMesh& visual,
+                       const TriangleMesh& collision,
+                       const std::string& fragment)
+  {
+    try
+    {
+      bindVisualToCollision(visual, collision);
+      ADD_FAILURE() << "no error, expected one mentioning '" << fragment << "'";
+    }
+    catch (const InvalidInputError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  const TissueModel& s = sheet();
+  // Collision mesh outside the visual volume.
+  TriangleMesh lifted = s.collision;
+  lifted.positions[5].z() += 10.0;
+  expectError(s.visual, lifted, "vertex 5 lies outside");
+  // Open visual mesh.
+  TriangleMesh open = s.visual;
+  open.triangles.pop_back();
+  open.textureCorners.pop_back();
+  expectError(open, s.collision, "border edges");
+  // Non-manifold visual mesh: a triangle repeated with another third vertex.
+  TriangleMesh nonManifold = s.visual;
+  const Triangle t0 = nonManifold.triangles[0];
+  nonManifold.triangles.push_back({ t0[1], t0[0], t0[2] == 0 ? 1 : 0 });
+  nonManifold.textureCorners.push_back(nonManifold.textureCorners[0]);
+  expectError(nonManifold, s.collision, "non-manifold");
+  // Radii missing, non-positive.
+  TriangleMesh noRadius = s.collision;
+  noRadius.pointAttributes.remove("Radius");
+  expectError(s.visual, noRadius, "'Radius'");
+  TriangleMesh zeroRadius = s.collision;
+  zeroRadius.pointAttributes.get("Radius").values[3] = 0.0;
+  expectError(s.visual, zeroRadius, "vertex 3 has radius 0");
+  // Not thin: the radii claim a surface far closer than it is.
+  TriangleMesh thinRadii = s.collision;
+  for (double& r : thinRadii.pointAttributes.get("Radius").values)
+  {
+    r = 0.01;
+  }
+  expectError(s.visual, thinRadii, "not thin");
+}
+
+TEST(BindingCache, RoundTripStaleAndDamagedFiles)
+{
+  const TissueModel& s = sheet();
+  const VisualCollisionBinding& binding = sheetBinding();
+  const std::uint64_t checksum = bindingInputChecksum(s.visual, s.collision, {});
+  const std::string path = temporaryPath("sheet.binding");
+  writeBindingCache(path, binding, checksum, &s.simulation);
+
+  std::string why;
+  auto read = readBindingCache(path, checksum, &why);
+  ASSERT_TRUE(read.has_value()) << why;
+  EXPECT_TRUE(read->binding.visual.positions == binding.visual.positions);
+  EXPECT_TRUE(read->binding.triangleRegion == binding.triangleRegion);
+  ASSERT_EQ(read->binding.vertices.size(), binding.vertices.size());
+  for (std::size_t v = 0; v < binding.vertices.size(); ++v)
+  {
+    ASSERT_EQ(read->binding.vertices[v].parameters, binding.vertices[v].parameters);
+  }
+  ASSERT_TRUE(read->simulation.has_value());
+  EXPECT_TRUE(read->simulation->nodes == s.simulation.nodes);
+
+  // Stale: another collision mesh.
+  TriangleMesh moved = s.collision;
+  moved.positions[0].x() += 1e-6;
+  EXPECT_NE(bindingInputChecksum(s.visual, moved, {}), checksum);
+  EXPECT_FALSE(readBindingCache(path, bindingInputChecksum(s.visual, moved, {}), &why));
+  EXPECT_NE(why.find("stale"), std::string::npos) << why;
+
+  // Damaged: one byte flipped, then truncated.
+  const auto size = std::filesystem::file_size(path);
+  {
+    std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(static_cast<std::streamoff>(size / 2));
+    char byte = 0;
+    file.seekg(static_cast<std::streamoff>(size / 2));
+    file.get(byte);
+    file.seekp(static_cast<std::streamoff>(size / 2));
+    file.put(static_cast<char>(byte ^ 0x5a));
+  }
+  EXPECT_FALSE(readBindingCache(path, checksum, &why));
+  EXPECT_NE(why.find("damaged"), std::string::npos) << why;
+  std::filesystem::resize_file(path, size / 3);
+  EXPECT_FALSE(readBindingCache(path, checksum, &why));
+  EXPECT_NE(why.find("damaged"), std::string::npos) << why;
+
+  // loadOrBuild rebuilds the damaged file, then trusts the new one.
+  bool rebuilt = false;
+  const VisualCollisionBinding rebuiltBinding =
+    loadOrBuildBinding(path, s.visual, s.collision, {}, {}, &rebuilt, &why);
+  EXPECT_TRUE(rebuilt);
+  EXPECT_TRUE(rebuiltBinding.visual.positions == binding.visual.positions);
+  loadOrBuildBinding(path, s.visual, s.collision, {}, {}, &rebuilt);
+  EXPECT_FALSE(rebuilt);
+  std::filesystem::remove(path);
+  EXPECT_FALSE(readBindingCache(path, checksum, &why));
+  EXPECT_NE(why.find("missing"), std::string::npos);
+}
+
+TEST(VisualCollisionBinding, ProgressIsReportedAndAbortStops)
+{
+  std::vector<double> fractions;
+  VisualCollisionBindingSettings settings;
+  bindVisualToCollision(sheet().visual,
+    sheet().collision,
+    settings,
+    [&](double fraction, const char*)
+    {
+      fractions.push_back(fraction);
+      return true;
+    });
+  ASSERT_GT(fractions.size(), 5u);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_EQ(fractions.back(), 1.0);
+  EXPECT_THROW(bindVisualToCollision(sheet().visual,
+                 sheet().collision,
+                 settings,
+                 [](double fraction, const char*) { return fraction < 0.2; }),
+    BindingAbortedError);
+}
