@@ -199,8 +199,8 @@ void checkBinding(const VisualCollisionBinding& b)
   require(b.vertices.size() == visualVertices, "one binding per visual vertex");
   require(b.triangleRegion.size() == visualTriangles && b.triangleSide.size() == visualTriangles,
     "one region per visual triangle");
-  require(b.pairedVisualVertices.size() == b.collisionPositions.size(),
-    "one pair per collision vertex");
+  require(
+    b.pairedVisualVertices.size() == b.collisionPositions.size(), "one pair per collision vertex");
   for (const Triangle& t : b.collisionTriangles)
   {
     for (int v : t)
@@ -224,8 +224,8 @@ void checkBinding(const VisualCollisionBinding& b)
     const int limit = v.kind == BindingKind::CollisionVertex ? collisionVertices
                       : v.kind == BindingKind::CollisionEdge ? edges
                                                              : collisionTriangles;
-    require(static_cast<int>(v.kind) <= 2 && v.element >= 0 && v.element < limit &&
-              v.side >= -1 && v.side <= 1 && v.parameters.allFinite(),
+    require(static_cast<int>(v.kind) <= 2 && v.element >= 0 && v.element < limit && v.side >= -1 &&
+              v.side <= 1 && v.parameters.allFinite(),
       "vertex binding in range");
   }
   for (std::size_t t = 0; t < visualTriangles; ++t)

@@ -149,6 +149,40 @@ private:
   std::size_t Count = 0;
 };
 
+/// The triangles a search may use: all, or those marked in a mask (a path
+/// restricted to one side of a thin surface, see shortestPathWithin).
+struct TriangleMask
+{
+  const std::vector<char>* allowed = nullptr;
+
+  bool operator()(int t) const { return allowed == nullptr || (*allowed)[t] != 0; }
+  /// Triangles of vertex v that may be used.
+  int vertexTriangleCount(const TriangleMeshAdjacency& adjacency, int v) const
+  {
+    if (allowed == nullptr)
+    {
+      return adjacency.vertexTriangleCount(v);
+    }
+    int count = 0;
+    for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
+         ++t)
+    {
+      count += (*allowed)[*t] != 0 ? 1 : 0;
+    }
+    return count;
+  }
+  /// Triangles of edge e that may be used.
+  int edgeTriangleCount(const TriangleMeshAdjacency& adjacency, int e) const
+  {
+    int count = 0;
+    for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
+    {
+      count += (*this)(*t) ? 1 : 0;
+    }
+    return count;
+  }
+};
+
 using QueueEntry = std::pair<double, int>;
 using MinQueue = std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::greater<QueueEntry>>;
 
@@ -165,6 +199,7 @@ using MinQueue = std::priority_queue<QueueEntry, std::vector<QueueEntry>, std::g
 template <class Function>
 void forEachStep(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
+  const TriangleMask& mask,
   int v,
   bool acrossEdges,
   Function&& f)
@@ -172,6 +207,10 @@ void forEachStep(const TriangleMesh& mesh,
   const std::vector<Vector3>& p = mesh.positions;
   for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v); ++t)
   {
+    if (!mask(*t))
+    {
+      continue;
+    }
     const Triangle& corners = mesh.triangles[*t];
     const int i = corners[0] == v ? 0 : (corners[1] == v ? 1 : 2);
     const int a = corners[(i + 1) % 3];
@@ -183,7 +222,7 @@ void forEachStep(const TriangleMesh& mesh,
       continue;
     }
     const int next = adjacency.neighbourAcross(*t, (i + 1) % 3);
-    if (next < 0)
+    if (next < 0 || !mask(next))
     {
       continue;
     }
@@ -222,6 +261,7 @@ void forEachStep(const TriangleMesh& mesh,
 /// not connected.
 double searchDistance(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
+  const TriangleMask& mask,
   int source,
   int target,
   bool acrossEdges)
@@ -252,6 +292,7 @@ double searchDistance(const TriangleMesh& mesh,
     }
     forEachStep(mesh,
       adjacency,
+      mask,
       v,
       acrossEdges,
       [&](int u, double length)
@@ -276,6 +317,7 @@ double searchDistance(const TriangleMesh& mesh,
 /// tests, so the ellipse's distances are exact.
 std::vector<int> ellipseVertices(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
+  const TriangleMask& mask,
   int source,
   int target,
   double bound,
@@ -297,6 +339,7 @@ std::vector<int> ellipseVertices(const TriangleMesh& mesh,
     state.sourceSettled = true;
     forEachStep(mesh,
       adjacency,
+      mask,
       v,
       true,
       [&, distance = distance](int u, double length)
@@ -331,6 +374,7 @@ std::vector<int> ellipseVertices(const TriangleMesh& mesh,
     ellipse.push_back(v);
     forEachStep(mesh,
       adjacency,
+      mask,
       v,
       true,
       [&, distance = distance](int u, double length)
@@ -374,6 +418,7 @@ struct Patch
 
 void buildPatch(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
+  const TriangleMask& mask,
   const std::vector<char>& flipped,
   const std::vector<int>& ellipse,
   VertexTable& table,
@@ -381,8 +426,14 @@ void buildPatch(const TriangleMesh& mesh,
 {
   for (int v : ellipse)
   {
-    patch.triangles.insert(
-      patch.triangles.end(), adjacency.vertexTrianglesBegin(v), adjacency.vertexTrianglesEnd(v));
+    for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
+         ++t)
+    {
+      if (mask(*t))
+      {
+        patch.triangles.push_back(*t);
+      }
+    }
   }
   std::sort(patch.triangles.begin(), patch.triangles.end());
   patch.triangles.erase(
@@ -471,7 +522,7 @@ void buildPatch(const TriangleMesh& mesh,
     {
       const int v = mesh.triangles[t][k];
       VertexState& state = table.at(v);
-      if (state.patchTriangles == adjacency.vertexTriangleCount(v))
+      if (state.patchTriangles == mask.vertexTriangleCount(adjacency, v))
       {
         if (state.patchVertex < 0)
         {
@@ -583,6 +634,7 @@ struct PatchPath
 /// mesh vertex indices, snapped, merged, and whether it touches the rim.
 PatchPath shortestPathOnPatch(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
+  const TriangleMask& mask,
   const Patch& patch,
   const VertexTable& table,
   int source,
@@ -601,7 +653,7 @@ PatchPath shortestPathOnPatch(const TriangleMesh& mesh,
   result.found = true;
 
   auto isRimVertex = [&](int v)
-  { return table.find(v)->patchTriangles != adjacency.vertexTriangleCount(v); };
+  { return table.find(v)->patchTriangles != mask.vertexTriangleCount(adjacency, v); };
   std::vector<SurfacePoint>& points = result.path.points;
   for (const RawPathPoint& raw : collector.points)
   {
@@ -634,8 +686,8 @@ PatchPath shortestPathOnPatch(const TriangleMesh& mesh,
       else
       {
         point = SurfacePoint::onEdge(raw.edgeStart, raw.edgeEnd, t);
-        onRim = raw.onPatchBorderEdge &&
-                adjacency.edgeTriangleCount(adjacency.findEdge(raw.edgeStart, raw.edgeEnd)) == 2;
+        onRim = raw.onPatchBorderEdge && mask.edgeTriangleCount(adjacency,
+                                           adjacency.findEdge(raw.edgeStart, raw.edgeEnd)) == 2;
       }
     }
     result.touchesRim = result.touchesRim || onRim;
@@ -834,7 +886,7 @@ void GeodesicPathFinder::checkVertices(int source, int target) const
 double GeodesicPathFinder::edgePathLength(int source, int target) const
 {
   checkVertices(source, target);
-  const double distance = searchDistance(Mesh, Adjacency, source, target, false);
+  const double distance = searchDistance(Mesh, Adjacency, TriangleMask{}, source, target, false);
   if (!std::isfinite(distance))
   {
     throw notConnected(Mesh, source, target);
@@ -847,7 +899,30 @@ SurfacePath GeodesicPathFinder::shortestPath(int source,
   int target,
   GeodesicPathStatistics* statistics) const
 {
+  return shortestPathOn(source, target, nullptr, statistics);
+}
+
+SurfacePath GeodesicPathFinder::shortestPathWithin(int source,
+  int target,
+  const std::vector<char>& allowedTriangles,
+  GeodesicPathStatistics* statistics) const
+{
+  if (allowedTriangles.size() != Mesh.triangleCount())
+  {
+    throw InvalidInputError("geodesic path on " + meshLabel(Mesh) + ": the triangle mask has " +
+                            std::to_string(allowedTriangles.size()) + " entries, the mesh " +
+                            std::to_string(Mesh.triangleCount()) + " triangles");
+  }
+  return shortestPathOn(source, target, &allowedTriangles, statistics);
+}
+
+SurfacePath GeodesicPathFinder::shortestPathOn(int source,
+  int target,
+  const std::vector<char>* allowedTriangles,
+  GeodesicPathStatistics* statistics) const
+{
   checkVertices(source, target);
+  const TriangleMask mask{ allowedTriangles };
   GeodesicPathStatistics stats;
   if (source == target)
   {
@@ -861,7 +936,7 @@ SurfacePath GeodesicPathFinder::shortestPath(int source,
   }
   // The bound of the patch: the search distance with steps across edges
   // (an upper bound of the geodesic length, tighter than the edge path's).
-  const double searchLength = searchDistance(Mesh, Adjacency, source, target, true);
+  const double searchLength = searchDistance(Mesh, Adjacency, mask, source, target, true);
   if (!std::isfinite(searchLength))
   {
     throw notConnected(Mesh, source, target);
@@ -874,10 +949,11 @@ SurfacePath GeodesicPathFinder::shortestPath(int source,
   {
     table.clear();
     const double bound = scale * searchLength * (1.0 + EllipseTolerance);
-    const std::vector<int> ellipse = ellipseVertices(Mesh, Adjacency, source, target, bound, table);
+    const std::vector<int> ellipse =
+      ellipseVertices(Mesh, Adjacency, mask, source, target, bound, table);
     Patch patch;
-    buildPatch(Mesh, Adjacency, Flipped, ellipse, table, patch);
-    PatchPath found = shortestPathOnPatch(Mesh, Adjacency, patch, table, source, target);
+    buildPatch(Mesh, Adjacency, mask, Flipped, ellipse, table, patch);
+    PatchPath found = shortestPathOnPatch(Mesh, Adjacency, mask, patch, table, source, target);
     if (!patch.hasRim && !found.found)
     {
       throw InvalidInputError("geodesic path on " + meshLabel(Mesh) + ": no path on the surface " +

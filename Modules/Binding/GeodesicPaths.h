@@ -83,6 +83,18 @@ public:
     int target,
     GeodesicPathStatistics* statistics = nullptr) const;
 
+  /// The exact shortest path from `source` to `target` on the part of the
+  /// surface made of the triangles marked non-zero in `allowedTriangles`
+  /// (one entry per mesh triangle), which acts as a surface with border
+  /// where unmarked triangles begin: the binding keeps each side's paths on
+  /// that side of a thin surface (5.2.2). Otherwise as shortestPath; throws
+  /// InvalidInputError when the two vertices are not connected through
+  /// marked triangles or the mask has the wrong size.
+  SurfacePath shortestPathWithin(int source,
+    int target,
+    const std::vector<char>& allowedTriangles,
+    GeodesicPathStatistics* statistics = nullptr) const;
+
   /// The Dijkstra (edge-path) distance between two vertices (A* search),
   /// an upper bound of the geodesic length, for tests (the patch bound also
   /// steps across edges). Throws InvalidInputError like shortestPath.
@@ -95,6 +107,10 @@ public:
 
 private:
   void checkVertices(int source, int target) const;
+  SurfacePath shortestPathOn(int source,
+    int target,
+    const std::vector<char>* allowedTriangles,
+    GeodesicPathStatistics* statistics) const;
 
   const TriangleMesh& Mesh;
   const TriangleMeshAdjacency& Adjacency;

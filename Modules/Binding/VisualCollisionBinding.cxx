@@ -242,9 +242,8 @@ CollisionTopology analyseCollision(const TriangleMesh& collision)
     if (count > 2)
     {
       throw InvalidInputError(nameOf(collision, "collision") + ": edge (" +
-                              std::to_string(key >> 32) + ", " +
-                              std::to_string(key & 0xffffffffu) + ") has " +
-                              std::to_string(count) + " triangles (non-manifold)");
+                              std::to_string(key >> 32) + ", " + std::to_string(key & 0xffffffffu) +
+                              ") has " + std::to_string(count) + " triangles (non-manifold)");
     }
     topology.edges.push_back(
       { { static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu) } });
@@ -302,8 +301,8 @@ void checkInputs(const TriangleMesh& visual,
   auto fail = [&](const char* what, const ValidationFinding& finding)
   {
     throw InvalidInputError(nameOf(visual, "visual") + " must be closed, manifold and " +
-                            "consistently oriented: " + std::to_string(finding.count) + " " +
-                            what + ", first at " + finding.firstLocation);
+                            "consistently oriented: " + std::to_string(finding.count) + " " + what +
+                            ", first at " + finding.firstLocation);
   };
   if (report.nonManifoldEdges.count > 0)
   {
@@ -327,8 +326,8 @@ void checkInputs(const TriangleMesh& visual,
   }
   if (report.signedVolume <= 0.0)
   {
-    throw InvalidInputError(nameOf(visual, "visual") +
-                            " faces inward (negative enclosed volume): flip its triangles");
+    throw InvalidInputError(
+      nameOf(visual, "visual") + " faces inward (negative enclosed volume): flip its triangles");
   }
   if (!collision.pointAttributes.has(settings.radiusArrayName))
   {
@@ -415,8 +414,8 @@ std::vector<std::array<int, 2>> pairCollisionVertices(const TriangleMesh& visual
       if (triangle < 0)
       {
         errors[c] = "collision vertex " + std::to_string(v) + " has no visual vertex on its " +
-                    (slot == 0 ? "positive" : "negative") +
-                    " side: its normal ray does not meet " + nameOf(visual, "visual");
+                    (slot == 0 ? "positive" : "negative") + " side: its normal ray does not meet " +
+                    nameOf(visual, "visual");
         return;
       }
       if (distance > reach)
@@ -435,8 +434,7 @@ std::vector<std::array<int, 2>> pairCollisionVertices(const TriangleMesh& visual
         // Only vertices on this side of the collision vertex.
         if ((visual.positions[w] - origin).dot(direction) > 0.0)
         {
-          claim.candidates.emplace_back(
-            distanceToLine(visual.positions[w], origin, direction), w);
+          claim.candidates.emplace_back(distanceToLine(visual.positions[w], origin, direction), w);
         }
       }
       std::sort(claim.candidates.begin(), claim.candidates.end());
@@ -485,9 +483,9 @@ std::vector<std::array<int, 2>> pairCollisionVertices(const TriangleMesh& visual
       throw InvalidInputError(
         "collision vertex " + std::to_string(claim.collisionVertex) + " of " +
         nameOf(collision, "collision") + " finds no free visual vertex on its " +
-        (topology.borderVertex[claim.collisionVertex] ? "rim"
-                                                       : (claim.slot == 0 ? "positive side"
-                                                                          : "negative side")) +
+        (topology.borderVertex[claim.collisionVertex]
+            ? "rim"
+            : (claim.slot == 0 ? "positive side" : "negative side")) +
         ": its neighbours took them all (the visual mesh is too coarse there)");
     }
   }
@@ -564,8 +562,8 @@ public:
           const Vector3 toL = mesh.positions[l] - mesh.positions[i];
           const double angle = std::atan2(toJ.cross(toL).norm(), toJ.dot(toL));
           const double halfTangent = std::tan(0.5 * angle);
-          for (const auto& [other, length] : { std::pair<int, double>(j, toJ.norm()),
-                 std::pair<int, double>(l, toL.norm()) })
+          for (const auto& [other, length] :
+            { std::pair<int, double>(j, toJ.norm()), std::pair<int, double>(l, toL.norm()) })
           {
             const double w = halfTangent / length;
             diagonal[Local[i]] += w;
@@ -635,6 +633,198 @@ private:
   std::unordered_map<int, Vector2> BoundaryPosition;
 };
 
+/// A geodesic path wanted for collision edge `edge` on side `side` (0: the
+/// rim path of a border edge) between two visual vertices.
+struct PathRequest
+{
+  int edge;
+  int side;
+  int source;
+  int target;
+};
+
+/// The requested paths, in parallel or not (same result), in blocks so that
+/// progress (and abort) is reported from this thread between `from` and
+/// `to`. With `halves`, a path of side +1 stays on halves[0], of side -1 on
+/// halves[1].
+std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
+  const std::vector<PathRequest>& requests,
+  const std::array<std::vector<char>, 2>* halves,
+  bool parallel,
+  const BindingProgress& progress,
+  double from,
+  double to)
+{
+  std::vector<SurfacePath> paths(requests.size());
+  auto computePath = [&](std::size_t k)
+  {
+    const PathRequest& r = requests[k];
+    paths[k] = halves && r.side != 0
+                 ? finder.shortestPathWithin(r.source, r.target, (*halves)[r.side > 0 ? 0 : 1])
+                 : finder.shortestPath(r.source, r.target);
+  };
+  const std::size_t block = std::max<std::size_t>(1, requests.size() / 20);
+  for (std::size_t begin = 0; begin < requests.size(); begin += block)
+  {
+    const std::size_t end = std::min(requests.size(), begin + block);
+    if (parallel)
+    {
+      tbb::parallel_for(begin, end, computePath);
+    }
+    else
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        computePath(k);
+      }
+    }
+    report(progress,
+      from + (to - from) * static_cast<double>(end) / static_cast<double>(requests.size()),
+      "computing geodesic paths");
+  }
+  return paths;
+}
+
+/// The side (+1 / -1) of every triangle of the visual surface cut along the
+/// rim paths: each piece the rim paths bound (flood fill) takes the side of
+/// the collision vertices' paired visual vertices in it; a piece without
+/// any (a collision mesh with no inner vertex) the side its surface lies on,
+/// measured from the nearest collision vertex along its normal. A piece
+/// holding vertices of both sides means the rim paths do not separate the
+/// two sides: InvalidInputError.
+std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency,
+  const std::vector<std::vector<int>>& rimPaths,
+  const TriangleMesh& collision,
+  const std::vector<std::array<int, 2>>& paired,
+  const CollisionTopology& topology)
+{
+  std::vector<char> barrier(adjacency.edgeCount(), 0);
+  std::vector<char> onRim(mesh.vertexCount(), 0);
+  for (const std::vector<int>& path : rimPaths)
+  {
+    for (std::size_t i = 0; i < path.size(); ++i)
+    {
+      onRim[path[i]] = 1;
+      if (i > 0)
+      {
+        barrier[adjacency.findEdge(path[i - 1], path[i])] = 1;
+      }
+    }
+  }
+  std::vector<int> piece(mesh.triangleCount(), -1);
+  int pieces = 0;
+  std::vector<int> stack;
+  for (std::size_t seed = 0; seed < mesh.triangleCount(); ++seed)
+  {
+    if (piece[seed] >= 0)
+    {
+      continue;
+    }
+    piece[seed] = pieces;
+    stack.assign(1, static_cast<int>(seed));
+    while (!stack.empty())
+    {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k)
+      {
+        const int next = adjacency.neighbourAcross(t, k);
+        if (next >= 0 && piece[next] < 0 && !barrier[adjacency.triangleEdges(t)[k]])
+        {
+          piece[next] = pieces;
+          stack.push_back(next);
+        }
+      }
+    }
+    ++pieces;
+  }
+  // Votes of the paired visual vertices of inner collision vertices.
+  std::vector<std::array<int, 2>> votes(static_cast<std::size_t>(pieces), { { 0, 0 } });
+  std::vector<int> firstVoter(2 * static_cast<std::size_t>(pieces), -1);
+  for (std::size_t c = 0; c < paired.size(); ++c)
+  {
+    if (topology.borderVertex[c])
+    {
+      continue;
+    }
+    for (int slot = 0; slot < 2; ++slot)
+    {
+      const int v = paired[c][slot];
+      if (onRim[v])
+      {
+        continue;
+      }
+      const int p = piece[*adjacency.vertexTrianglesBegin(v)];
+      ++votes[p][slot];
+      firstVoter[2 * p + slot] =
+        firstVoter[2 * p + slot] < 0 ? static_cast<int>(c) : firstVoter[2 * p + slot];
+    }
+  }
+  std::vector<std::int8_t> sideOfPiece(static_cast<std::size_t>(pieces), 0);
+  std::vector<double> offset(static_cast<std::size_t>(pieces), 0.0);
+  bool needOffsets = false;
+  for (int p = 0; p < pieces; ++p)
+  {
+    if (votes[p][0] > 0 && votes[p][1] > 0)
+    {
+      throw InvalidInputError("collision mesh '" + collision.name + "': collision vertex " +
+                              std::to_string(firstVoter[2 * p]) +
+                              " finds its positive visual vertex, and collision vertex " +
+                              std::to_string(firstVoter[2 * p + 1]) +
+                              " its negative one, on one piece of the visual surface between "
+                              "the rim paths (the collision normals are not consistent, or the "
+                              "border does not run around the visual rim)");
+    }
+    sideOfPiece[p] = votes[p][0] > 0 ? 1 : (votes[p][1] > 0 ? -1 : 0);
+    needOffsets = needOffsets || sideOfPiece[p] == 0;
+  }
+  if (needOffsets)
+  {
+    // Sampled (every piece at least once): about 8192 triangles in all.
+    const std::size_t stride = std::max<std::size_t>(1, mesh.triangleCount() / 8192);
+    std::vector<char> sampled(static_cast<std::size_t>(pieces), 0);
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+      const int p = piece[t];
+      if (sideOfPiece[p] != 0 || (t % stride != 0 && sampled[p]))
+      {
+        continue;
+      }
+      sampled[p] = 1;
+      const Triangle& tri = mesh.triangles[t];
+      const Vector3 centre =
+        (mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]) / 3.0;
+      double best = Infinity;
+      int nearest = 0;
+      for (std::size_t c = 0; c < collision.vertexCount(); ++c)
+      {
+        const double d = (collision.positions[c] - centre).squaredNorm();
+        if (d < best)
+        {
+          best = d;
+          nearest = static_cast<int>(c);
+        }
+      }
+      offset[p] += mesh.triangleArea(t) *
+                   (centre - collision.positions[nearest]).dot(topology.vertexNormals[nearest]);
+    }
+    for (int p = 0; p < pieces; ++p)
+    {
+      if (sideOfPiece[p] == 0)
+      {
+        sideOfPiece[p] = offset[p] >= 0.0 ? 1 : -1;
+      }
+    }
+  }
+  std::vector<std::int8_t> side(mesh.triangleCount());
+  for (std::size_t t = 0; t < side.size(); ++t)
+  {
+    side[t] = sideOfPiece[piece[t]];
+  }
+  return side;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -644,9 +834,10 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   const BindingProgress& progress)
 {
   report(progress, 0.0, "checking the meshes");
-  const std::vector<double> radii = collision.pointAttributes.has(settings.radiusArrayName)
-                                      ? collision.pointAttributes.get(settings.radiusArrayName).values
-                                      : std::vector<double>();
+  const std::vector<double> radii =
+    collision.pointAttributes.has(settings.radiusArrayName)
+      ? collision.pointAttributes.get(settings.radiusArrayName).values
+      : std::vector<double>();
   checkInputs(visual, collision, radii, settings);
   const CollisionTopology topology = analyseCollision(collision);
   const TriangleMeshAdjacency visualAdjacency(visual);
@@ -660,16 +851,16 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   binding.pairedVisualVertices =
     pairCollisionVertices(visual, visualAdjacency, collision, radii, topology, settings);
 
-  // 5.2.2 Geodesic paths: one per border edge, two per inner edge.
+  // 5.2.2 Geodesic paths: one per border edge (the rim path), two per inner
+  // edge. First the rim paths, inserted into the mesh (5.2.3): together
+  // they are the "equator" that splits the closed visual surface into its
+  // positive and negative halves. Then each inner edge's positive and
+  // negative paths, each kept on its own half: they cannot wrap around the
+  // rim, and an inner edge joining two border vertices (a corner of a grid)
+  // gets two distinct paths between the same two rim vertices.
   report(progress, 0.1, "computing geodesic paths");
-  struct PathRequest
-  {
-    int edge;
-    int side;
-    int source;
-    int target;
-  };
-  std::vector<PathRequest> requests;
+  std::vector<PathRequest> rimRequests;
+  std::vector<PathRequest> innerRequests;
   for (std::size_t e = 0; e < topology.edges.size(); ++e)
   {
     const auto& edge = topology.edges[e];
@@ -677,48 +868,71 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     const auto& b = binding.pairedVisualVertices[edge[1]];
     if (topology.edgeTriangleCount[e] == 1)
     {
-      requests.push_back({ static_cast<int>(e), 0, a[0], b[0] });
+      rimRequests.push_back({ static_cast<int>(e), 0, a[0], b[0] });
       continue;
     }
-    if (a[0] == a[1] && b[0] == b[1])
-    {
-      throw InvalidInputError(nameOf(collision, "collision") + ": inner edge (" +
-                              std::to_string(edge[0]) + ", " + std::to_string(edge[1]) +
-                              ") joins two border vertices; its positive and negative paths "
-                              "would both be the one shortest path between their rim vertices. "
-                              "Split the edge's triangles so that it has an inner vertex.");
-    }
-    requests.push_back({ static_cast<int>(e), 1, a[0], b[0] });
-    requests.push_back({ static_cast<int>(e), -1, a[1], b[1] });
+    innerRequests.push_back({ static_cast<int>(e), 1, a[0], b[0] });
+    innerRequests.push_back({ static_cast<int>(e), -1, a[1], b[1] });
   }
-  const GeodesicPathFinder finder(visual, visualAdjacency);
-  std::vector<SurfacePath> surfacePaths(requests.size());
-  // In blocks, so that progress (and abort) is reported from this thread.
-  const std::size_t block = std::max<std::size_t>(1, requests.size() / 20);
-  for (std::size_t begin = 0; begin < requests.size(); begin += block)
+  const double pathsDone = static_cast<double>(rimRequests.size() + innerRequests.size());
+  RemeshedSurface rimmed;
   {
-    const std::size_t end = std::min(requests.size(), begin + block);
-    auto computePath = [&](std::size_t k)
-    { surfacePaths[k] = finder.shortestPath(requests[k].source, requests[k].target); };
-    if (settings.parallel)
+    const GeodesicPathFinder finder(visual, visualAdjacency);
+    const std::vector<SurfacePath> rimPaths = computePaths(finder,
+      rimRequests,
+      nullptr,
+      settings.parallel,
+      progress,
+      0.1,
+      0.1 + 0.6 * rimRequests.size() / pathsDone);
+    report(progress, 0.1 + 0.6 * rimRequests.size() / pathsDone, "re-meshing along the rim paths");
+    rimmed = insertPaths(visual, rimPaths);
+  }
+  const TriangleMeshAdjacency rimmedAdjacency(rimmed.mesh);
+  const std::vector<std::int8_t> half = surfaceHalves(rimmed.mesh,
+    rimmedAdjacency,
+    rimmed.pathVertices,
+    collision,
+    binding.pairedVisualVertices,
+    topology);
+  std::array<std::vector<char>, 2> halfMask; // + and -
+  for (int slot = 0; slot < 2; ++slot)
+  {
+    halfMask[slot].resize(half.size());
+    for (std::size_t t = 0; t < half.size(); ++t)
     {
-      tbb::parallel_for(begin, end, computePath);
+      halfMask[slot][t] = half[t] == (slot == 0 ? 1 : -1) ? 1 : 0;
     }
-    else
-    {
-      for (std::size_t k = begin; k < end; ++k)
-      {
-        computePath(k);
-      }
-    }
-    report(progress,
-      0.1 + 0.6 * static_cast<double>(end) / static_cast<double>(requests.size()),
-      "computing geodesic paths");
+  }
+  std::vector<SurfacePath> innerPaths;
+  {
+    const GeodesicPathFinder finder(rimmed.mesh, rimmedAdjacency);
+    innerPaths = computePaths(finder,
+      innerRequests,
+      &halfMask,
+      settings.parallel,
+      progress,
+      0.1 + 0.6 * rimRequests.size() / pathsDone,
+      0.7);
   }
 
-  // 5.2.3 Re-meshing along the paths.
+  // 5.2.3 Re-meshing along the inner paths; the rim paths, given again by
+  // their vertices, pick up the vertices inserted on their edges.
   report(progress, 0.7, "re-meshing the visual mesh along the paths");
-  RemeshedSurface remeshed = insertPaths(visual, surfacePaths);
+  std::vector<PathRequest> requests = rimRequests;
+  requests.insert(requests.end(), innerRequests.begin(), innerRequests.end());
+  std::vector<SurfacePath> allPaths;
+  for (const std::vector<int>& vertices : rimmed.pathVertices)
+  {
+    SurfacePath path;
+    for (int v : vertices)
+    {
+      path.points.push_back(SurfacePoint::atVertex(v));
+    }
+    allPaths.push_back(std::move(path));
+  }
+  allPaths.insert(allPaths.end(), innerPaths.begin(), innerPaths.end());
+  RemeshedSurface remeshed = insertPaths(rimmed.mesh, allPaths);
   binding.visual = std::move(remeshed.mesh);
   const TriangleMesh& mesh = binding.visual;
   for (std::size_t k = 0; k < requests.size(); ++k)
@@ -962,9 +1176,9 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     const double l01 = (p1 - p0).norm();
     const Vector3 x = (p1 - p0) / l01;
     const Vector3 y = (p2 - p0 - (p2 - p0).dot(x) * x).normalized();
-    const std::array<Vector2, 3> corners{ { Vector2(0.0, 0.0),
-      Vector2(l01, 0.0),
-      Vector2((p2 - p0).dot(x), (p2 - p0).dot(y)) } };
+    const std::array<Vector2, 3> corners{
+      { Vector2(0.0, 0.0), Vector2(l01, 0.0), Vector2((p2 - p0).dot(x), (p2 - p0).dot(y)) }
+    };
     for (int side : { 1, -1 })
     {
       boundary.clear();
@@ -983,11 +1197,8 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
           boundary.emplace_back(pv[i], position);
         }
       }
-      parameterisation.solve(mesh,
-        regionTriangles[2 * t + (side < 0 ? 1 : 0)],
-        boundary,
-        corners,
-        binding.vertices);
+      parameterisation.solve(
+        mesh, regionTriangles[2 * t + (side < 0 ? 1 : 0)], boundary, corners, binding.vertices);
     }
     if (t % 16 == 0)
     {

@@ -391,6 +391,50 @@ TEST(GeodesicPaths, TopToBottomOfTheClosedSheetGoesOverTheRim)
 }
 
 //------------------------------------------------------------------------------
+TEST(GeodesicPaths, PathWithinAMaskStaysOnItsTriangles)
+{
+  // Two vertices on the upper rim edge of the sheet (x = 50, z = 1), 10 mm
+  // apart: the free path is the straight rim edge. With the triangles near
+  // the rim between them masked out (a vertex at x > 46, |y| < 3), the path
+  // must go around the masked block, on the upper face or the lower one.
+  const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(2));
+  const TriangleMesh& visual = sheet.visual;
+  const TriangleMeshAdjacency adjacency(visual);
+  const GeodesicPathFinder finder(visual, adjacency);
+  const int a = vertexAt(visual, Vector3(50.0, -5.0, 1.0));
+  const int b = vertexAt(visual, Vector3(50.0, 5.0, 1.0));
+  const SurfacePath free = finder.shortestPath(a, b);
+  EXPECT_NEAR(free.length, (visual.positions[a] - visual.positions[b]).norm(), 1e-9);
+  std::vector<char> allowed(visual.triangleCount(), 1);
+  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+  {
+    for (int v : visual.triangles[t])
+    {
+      const Vector3& x = visual.positions[v];
+      allowed[t] = x.x() > 46.0 && std::abs(x.y()) < 3.0 ? 0 : allowed[t];
+    }
+  }
+  GeodesicPathStatistics statistics;
+  const SurfacePath path = finder.shortestPathWithin(a, b, allowed, &statistics);
+  EXPECT_TRUE(isWellFormed(visual, adjacency, path, a, b));
+  EXPECT_GT(path.length, free.length + 4.0); // at least 2 x 4 mm in and out
+  for (const SurfacePoint& point : path.points)
+  {
+    const Vector3 x = point.position(visual.positions);
+    EXPECT_FALSE(x.x() > 46.0 + 1e-9 && std::abs(x.y()) < 3.0 - 1e-9)
+      << "point (" << x.transpose() << ") inside the masked block";
+  }
+  // Around the block on the upper face: the same as on the whole surface
+  // with the block's triangles removed (the path hugs its corners).
+  EXPECT_LT(path.length, free.length + 2.0 * 4.0 + 1.0);
+  EXPECT_LT(statistics.patchTriangles, visual.triangleCount() / 4);
+  // A mask of the wrong size; two vertices with no marked path between them.
+  EXPECT_THROW(finder.shortestPathWithin(a, b, std::vector<char>(3, 1)), InvalidInputError);
+  const std::vector<char> none(visual.triangleCount(), 0);
+  EXPECT_THROW(finder.shortestPathWithin(a, b, none), InvalidInputError);
+}
+
+//------------------------------------------------------------------------------
 TEST(GeodesicPaths, LocalPatchEqualsTheWholeSurface)
 {
   const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(1));

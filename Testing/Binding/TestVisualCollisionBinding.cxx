@@ -209,6 +209,80 @@ TEST(VisualCollisionBinding, MeniscusIsBoundExactly)
   checkBinding(meniscus().visual, meniscus().collision, meniscusBinding());
 }
 
+TEST(VisualCollisionBinding, InnerEdgesBetweenRimVerticesGetAPathOnEachSide)
+{
+  // The meniscus's collision grid cuts its four corners with inner edges
+  // joining two border vertices: the positive path must run over the upper
+  // surface, the negative one under the lower, meeting only at their ends.
+  const VisualCollisionBinding& b = meniscusBinding();
+  std::vector<int> borderEdges(b.collisionPositions.size(), 0);
+  std::map<std::pair<int, int>, int> triangleCount;
+  for (const Triangle& t : b.collisionTriangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++triangleCount[std::minmax(t[k], t[(k + 1) % 3])];
+    }
+  }
+  for (const auto& [edge, count] : triangleCount)
+  {
+    if (count == 1)
+    {
+      ++borderEdges[edge.first];
+      ++borderEdges[edge.second];
+    }
+  }
+  int chords = 0;
+  for (const BindingPath& positive : b.paths)
+  {
+    const auto& e = b.collisionEdges[positive.collisionEdge];
+    if (positive.side != 1 || borderEdges[e[0]] == 0 || borderEdges[e[1]] == 0)
+    {
+      continue;
+    }
+    ++chords;
+    const BindingPath* negative = nullptr;
+    for (const BindingPath& p : b.paths)
+    {
+      negative = p.collisionEdge == positive.collisionEdge && p.side == -1 ? &p : negative;
+    }
+    ASSERT_NE(negative, nullptr);
+    EXPECT_EQ(positive.visualVertices.front(), negative->visualVertices.front());
+    EXPECT_EQ(positive.visualVertices.back(), negative->visualVertices.back());
+    std::set<int> shared(positive.visualVertices.begin() + 1, positive.visualVertices.end() - 1);
+    for (std::size_t i = 1; i + 1 < negative->visualVertices.size(); ++i)
+    {
+      EXPECT_EQ(shared.count(negative->visualVertices[i]), 0u);
+    }
+    // Height above the collision edge's mid-point, along the collision
+    // normal there: the positive path rises above it, the negative one
+    // falls below.
+    Vector3 normal = Vector3::Zero();
+    for (const Triangle& t : b.collisionTriangles)
+    {
+      if (std::count(t.begin(), t.end(), e[0]) + std::count(t.begin(), t.end(), e[1]) == 2)
+      {
+        normal += (b.collisionPositions[t[1]] - b.collisionPositions[t[0]])
+                    .cross(b.collisionPositions[t[2]] - b.collisionPositions[t[0]]);
+      }
+    }
+    normal.normalize();
+    const Vector3 middle = 0.5 * (b.collisionPositions[e[0]] + b.collisionPositions[e[1]]);
+    auto highest = [&](const BindingPath& path, double sign)
+    {
+      double h = -1e300;
+      for (int v : path.visualVertices)
+      {
+        h = std::max(h, sign * (b.visual.positions[v] - middle).dot(normal));
+      }
+      return h;
+    };
+    EXPECT_GT(highest(positive, 1.0), 0.0);
+    EXPECT_GT(highest(*negative, -1.0), 0.0);
+  }
+  EXPECT_GE(chords, 1);
+}
+
 TEST(VisualCollisionBinding, ParametersPerTriangleFollowFigure5To6)
 {
   const VisualCollisionBinding& b = sheetBinding();
@@ -247,7 +321,8 @@ TEST(VisualCollisionBinding, SameInputSameOutputBitForBit)
 {
   VisualCollisionBindingSettings serial;
   serial.parallel = false;
-  const VisualCollisionBinding again = bindVisualToCollision(sheet().visual, sheet().collision, serial);
+  const VisualCollisionBinding again =
+    bindVisualToCollision(sheet().visual, sheet().collision, serial);
   const VisualCollisionBinding& first = sheetBinding();
   ASSERT_EQ(again.visual.positions.size(), first.visual.positions.size());
   EXPECT_TRUE(again.visual.positions == first.visual.positions);
@@ -265,9 +340,8 @@ TEST(VisualCollisionBinding, SameInputSameOutputBitForBit)
 
 TEST(VisualCollisionBinding, BadInputIsNamed)
 {
-  auto expectError = [](const TriangleMesh& visual,
-                       const TriangleMesh& collision,
-                       const std::string& fragment)
+  auto expectError =
+    [](const TriangleMesh& visual, const TriangleMesh& collision, const std::string& fragment)
   {
     try
     {

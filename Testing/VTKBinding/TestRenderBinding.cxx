@@ -5,126 +5,28 @@
 // palette, darker on the negative side), with the geodesic paths that bound
 // the regions drawn as thick dark lines.
 //
-// The binding rejects an inner collision edge joining two rim vertices (its
-// two paths would coincide); the meniscus's collision grid has such chords
-// at its corners, so they are split at their midpoints first (see
-// splitRimChords), as the binding's error message advises.
+// The meniscus's collision grid has inner edges joining two rim vertices
+// at its corners: each gets a positive and a negative path, over the upper
+// and the lower surface.
 #include "ThinTissueImageTest.h"
 #include "TissueModelScene.h"
 #include "vtkMeniscusSource.h"
 #include "vtkThinSheetSource.h"
 #include "vtkVisualCollisionBindingFilter.h"
 
-#include <vtkCellArray.h>
-#include <vtkCellArrayIterator.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkLookupTable.h>
 #include <vtkMath.h>
 #include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
 
-#include <array>
 #include <cmath>
 #include <iostream>
-#include <map>
-#include <set>
-#include <utility>
-#include <vector>
 
 namespace
 {
-
-/// The collision surface with every inner edge that joins two rim vertices
-/// split at its midpoint (point arrays, the radii among them, interpolated),
-/// each of its two triangles into two: the new vertex is an inner one.
-vtkSmartPointer<vtkPolyData> splitRimChords(vtkPolyData* input)
-{
-  using Edge = std::pair<vtkIdType, vtkIdType>;
-  auto key = [](vtkIdType a, vtkIdType b) { return a < b ? Edge(a, b) : Edge(b, a); };
-  std::vector<std::array<vtkIdType, 3>> triangles;
-  auto cells = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
-  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
-  {
-    vtkIdType size = 0;
-    const vtkIdType* ids = nullptr;
-    cells->GetCurrentCell(size, ids);
-    if (size == 3)
-    {
-      triangles.push_back({ ids[0], ids[1], ids[2] });
-    }
-  }
-  std::map<Edge, int> triangleCount;
-  for (const auto& t : triangles)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      ++triangleCount[key(t[k], t[(k + 1) % 3])];
-    }
-  }
-  std::set<vtkIdType> rim;
-  for (const auto& [edge, count] : triangleCount)
-  {
-    if (count == 1)
-    {
-      rim.insert(edge.first);
-      rim.insert(edge.second);
-    }
-  }
-  const vtkIdType pointCount = input->GetNumberOfPoints();
-  vtkNew<vtkPoints> points;
-  points->DeepCopy(input->GetPoints());
-  vtkNew<vtkPointData> pointData;
-  pointData->CopyAllocate(input->GetPointData(), pointCount);
-  for (vtkIdType p = 0; p < pointCount; ++p)
-  {
-    pointData->CopyData(input->GetPointData(), p, p);
-  }
-  std::map<Edge, vtkIdType> midpoint;
-  for (const auto& [edge, count] : triangleCount)
-  {
-    if (count == 2 && rim.count(edge.first) != 0 && rim.count(edge.second) != 0)
-    {
-      double a[3];
-      double b[3];
-      input->GetPoint(edge.first, a);
-      input->GetPoint(edge.second, b);
-      const vtkIdType m =
-        points->InsertNextPoint(0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2]));
-      pointData->InterpolateEdge(input->GetPointData(), m, edge.first, edge.second, 0.5);
-      midpoint[edge] = m;
-    }
-  }
-  vtkNew<vtkCellArray> polys;
-  for (const auto& t : triangles)
-  {
-    bool split = false;
-    for (int k = 0; k < 3 && !split; ++k)
-    {
-      const auto found = midpoint.find(key(t[k], t[(k + 1) % 3]));
-      if (found != midpoint.end())
-      {
-        const vtkIdType m = found->second;
-        const vtkIdType first[3] = { t[k], m, t[(k + 2) % 3] };
-        const vtkIdType second[3] = { m, t[(k + 1) % 3], t[(k + 2) % 3] };
-        polys->InsertNextCell(3, first);
-        polys->InsertNextCell(3, second);
-        split = true;
-      }
-    }
-    if (!split)
-    {
-      polys->InsertNextCell(3, t.data());
-    }
-  }
-  auto output = vtkSmartPointer<vtkPolyData>::New();
-  output->SetPoints(points);
-  output->SetPolys(polys);
-  output->GetPointData()->ShallowCopy(pointData);
-  return output;
-}
 
 /// Categorical palette: neighbouring indices get far-apart hues (golden
 /// ratio steps) and alternating saturation; entry 2 t is collision triangle
@@ -151,7 +53,7 @@ bool addBinding(vtkRenderer* renderer, vtkAlgorithmOutput* visual, vtkPolyData* 
 {
   vtkNew<vtkVisualCollisionBindingFilter> binding;
   binding->SetInputConnection(0, visual);
-  binding->SetCollisionData(splitRimChords(collision));
+  binding->SetCollisionData(collision);
   binding->Update();
   if (binding->GetVisualOutput()->GetNumberOfCells() == 0)
   {
