@@ -195,15 +195,42 @@ Vector3 orientedTriangleNormal(const Vector3& a, const Vector3& b, const Vector3
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/// Whether the triangle with edge cross product `cross` is not degenerate
+/// (the test of orientedTriangleNormal, without its square root).
+bool isProperTriangle(const Vector3& cross, double squaredScaleOfTriangle)
+{
+  const double bound = 1e-14 * squaredScaleOfTriangle;
+  const double squaredLength = cross.squaredNorm();
+  return squaredLength > bound * bound && squaredLength > 0.0;
+}
+
+TriangleClosestPoint closestPointOnProperTriangle(const Vector3& p,
+  const Vector3& a,
+  const Vector3& b,
+  const Vector3& c);
+} // namespace
+
 TriangleClosestPoint closestPointOnTriangleWithBarycentric(const Vector3& p,
   const Vector3& a,
   const Vector3& b,
   const Vector3& c)
 {
-  if (orientedTriangleNormal(a, b, c).isZero())
+  if (!isProperTriangle((b - a).cross(c - a), squaredScale(a, b, c)))
   {
     return closestPointOnDegenerateTriangle(p, { &a, &b, &c });
   }
+  return closestPointOnProperTriangle(p, a, b, c);
+}
+
+namespace
+{
+TriangleClosestPoint closestPointOnProperTriangle(const Vector3& p,
+  const Vector3& a,
+  const Vector3& b,
+  const Vector3& c)
+{
   // Voronoi-region walk (Ericson, Real-Time Collision Detection, 5.1.5).
   TriangleClosestPoint result;
   const Vector3 ab = b - a;
@@ -266,6 +293,7 @@ TriangleClosestPoint closestPointOnTriangleWithBarycentric(const Vector3& p,
   result.barycentric = Vector3(1.0 - v - w, v, w);
   return result;
 }
+} // namespace
 
 //------------------------------------------------------------------------------
 PointTriangleContact pointTriangleContact(const Vector3& point,
@@ -279,22 +307,28 @@ PointTriangleContact pointTriangleContact(const Vector3& point,
   double contactDistance)
 {
   PointTriangleContact contact;
-  const TriangleClosestPoint closest = closestPointOnTriangleWithBarycentric(point, a, b, c);
+  // One cross product serves the degeneracy test, the side and the
+  // fallback normal (this runs for every candidate of every vertex).
+  const Vector3 cross = (b - a).cross(c - a);
+  const double scale = squaredScale(a, b, c);
+  const bool proper = isProperTriangle(cross, scale);
+  const TriangleClosestPoint closest = proper
+                                         ? closestPointOnProperTriangle(point, a, b, c)
+                                         : closestPointOnDegenerateTriangle(point, { &a, &b, &c });
   contact.trianglePoint = closest.point;
   contact.barycentric = closest.barycentric;
   contact.triangleRadius = interpolate(closest.barycentric, ra, rb, rc);
-  const Vector3 faceNormal = orientedTriangleNormal(a, b, c);
   const Vector3 offset = point - closest.point;
   contact.distance = offset.norm();
-  contact.side = sideOf(faceNormal, point - a);
-  const double tiny = 1e-12 * std::sqrt(squaredScale(a, b, c));
+  contact.side = proper ? sideOf(cross, point - a) : 1;
+  const double tiny = 1e-12 * std::sqrt(scale);
   if (contact.distance > tiny)
   {
     contact.normal = offset / contact.distance;
   }
-  else if (!faceNormal.isZero())
+  else if (proper)
   {
-    contact.normal = faceNormal;
+    contact.normal = cross.normalized();
   }
   else
   {

@@ -3,6 +3,7 @@
 #include "ThinTissueError.h"
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 namespace thintissue
@@ -66,6 +67,31 @@ void TriangleBvh::build(const std::vector<Vector3>& positions,
 
   this->Triangles = triangles;
   this->ContactDistance = contactDistance;
+  // Edge owners: sort (edge, triangle, corner) so each edge's lowest
+  // triangle comes first.
+  {
+    std::vector<std::array<std::int64_t, 2>> edges; // (edge key, 4 t + k)
+    edges.reserve(3 * triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::int64_t a = triangles[t][k];
+        const std::int64_t b = triangles[t][(k + 1) % 3];
+        edges.push_back({ { std::min(a, b) * vertexCount + std::max(a, b),
+          4 * static_cast<std::int64_t>(t) + k } });
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    this->OwnedEdges.assign(triangles.size(), 0);
+    for (std::size_t i = 0; i < edges.size(); ++i)
+    {
+      if (i == 0 || edges[i][0] != edges[i - 1][0])
+      {
+        this->OwnedEdges[edges[i][1] / 4] |= static_cast<std::uint8_t>(1u << (edges[i][1] % 4));
+      }
+    }
+  }
   this->Nodes.clear();
   const int count = static_cast<int>(triangles.size());
   this->Order.resize(count);

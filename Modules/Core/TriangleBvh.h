@@ -23,6 +23,7 @@
 #include "ThinTissueCoreModule.h"
 #include "TriangleMesh.h"
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -70,6 +71,12 @@ public:
   /// the inflated box of triangle `leafTriangles()[i]`.
   const std::vector<int>& leafTriangles() const { return this->Order; }
   const std::vector<BoundingBox>& leafTriangleBoxes() const { return this->TriangleBoxes; }
+  /// Bit k set: triangle t is the lowest-indexed triangle of its edge
+  /// (t[k], t[k + 1 mod 3]). An edge shared by several triangles has one
+  /// owner, so a pair query that tests only owned edges meets every edge
+  /// pair once: the owners' boxes contain the edges' boxes, so they overlap
+  /// whenever any two triangles of the edges do.
+  std::uint8_t ownedEdges(int t) const { return this->OwnedEdges[t]; }
   /// Box of the whole mesh (empty box for an empty mesh).
   BoundingBox bounds() const { return this->Nodes.empty() ? BoundingBox() : this->Nodes[0].box; }
   /// Inflated box of one triangle, computed from the given data (same rule
@@ -109,6 +116,7 @@ private:
   std::vector<int> Order;
   std::vector<BoundingBox> TriangleBoxes; // parallel to Order
   std::vector<Triangle> Triangles;
+  std::vector<std::uint8_t> OwnedEdges; // by triangle index
   double ContactDistance = 0.0;
 };
 

@@ -3,6 +3,8 @@
 #include "ContactKernels.h"
 #include "ThinTissueError.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 
@@ -14,6 +16,9 @@ using contact_kernels::ThickMeshView;
 
 namespace
 {
+
+/// Mesh pairs are checked in parallel when they hold this many triangles.
+constexpr std::size_t ParallelNarrowPhaseTriangles = 8192;
 
 /// The springs one side of a contact gave to a solver.
 struct SpringRange
@@ -86,9 +91,18 @@ struct CollisionScene::Implementation
 
   // Parallel to CollisionScene::Contacts.
   std::vector<ContactFeatures> features;
-  // Reused buffers.
-  std::vector<FeatureContact> featureContacts;
-  contact_kernels::MeshMeshWorkspace workspace;
+  /// One pair of thick meshes the broad phase found overlapping: its
+  /// narrow phase runs in parallel with the others', into its own buffers.
+  struct MeshPairJob
+  {
+    ThickMeshView a;
+    ThickMeshView b;
+    std::vector<FeatureContact> contacts;
+    contact_kernels::MeshMeshWorkspace workspace;
+  };
+  // Reused buffers (grown, never shrunk: no allocation once warm).
+  std::vector<MeshPairJob> meshPairs;
+  std::size_t meshPairCount = 0;
   std::vector<double> shareDepthSums;
 
   /// Distinct solvers (tissues may share one) and each tissue's solver.
@@ -415,6 +429,12 @@ void CollisionScene::detectContacts()
     Contacts.push_back(c);
     in.features.push_back(features);
   };
+  // Thick mesh pairs: the first pass over the body pairs queues them, the
+  // narrow phases run in parallel, the second pass adds their contacts in
+  // the order of the body pairs (the same contacts, in the same order, as
+  // one thread would find).
+  bool collecting = true;
+  std::size_t nextMeshPair = 0;
   auto addMeshContacts = [&](const ThickMeshView& a,
                            const ThickMeshView& b,
                            SceneBody first,
@@ -422,9 +442,18 @@ void CollisionScene::detectContacts()
                            double stiffness,
                            int shareGroup)
   {
-    in.featureContacts.clear();
-    contact_kernels::meshMeshContacts(a, b, in.workspace, in.featureContacts);
-    for (const FeatureContact& f : in.featureContacts)
+    if (collecting)
+    {
+      if (in.meshPairs.size() == in.meshPairCount)
+      {
+        in.meshPairs.emplace_back();
+      }
+      Implementation::MeshPairJob& job = in.meshPairs[in.meshPairCount++];
+      job.a = a;
+      job.b = b;
+      return;
+    }
+    for (const FeatureContact& f : in.meshPairs[nextMeshPair++].contacts)
     {
       SceneContact c = sceneContactOf(f, first, second);
       c.stiffness = stiffness;
@@ -443,6 +472,10 @@ void CollisionScene::detectContacts()
                                     bool toolIsFirst,
                                     double stiffness)
   {
+    if (collecting)
+    {
+      return;
+    }
     for (const ToolSphere& sphere : tool.spheres())
     {
       const auto deepest =
@@ -534,84 +567,120 @@ void CollisionScene::detectContacts()
   const int obstacleCount = static_cast<int>(in.obstacles.size());
   auto overlapping = [&](const BoundingBox& x, const BoundingBox& y)
   {
-    ++Statistics.bodyPairs;
     const bool overlap = !x.isEmpty() && !y.isEmpty() && x.intersects(y);
-    Statistics.overlappingBodyPairs += overlap ? 1 : 0;
+    if (collecting)
+    {
+      ++Statistics.bodyPairs;
+      Statistics.overlappingBodyPairs += overlap ? 1 : 0;
+    }
     return overlap;
   };
-  for (int i = 0; i < tissueCount; ++i)
+  in.meshPairCount = 0;
+  for (int pass = 0; pass < 2; ++pass)
   {
-    const BoundingBox tissueBox = in.tissues[i].collision->bvh().bounds();
-    const ThickMeshView tissueView = contact_kernels::viewOf(*in.tissues[i].collision);
-    const SceneBody tissueBody{ SceneBodyKind::Tissue, i };
+    collecting = pass == 0;
+    if (!collecting)
+    {
+      // Each job writes only its own buffers. Threads pay from a few
+      // thousand triangles on; the knee's reduced meshes (~500 triangles
+      // in all) are faster on one thread.
+      auto runJob = [&](std::size_t k)
+      {
+        Implementation::MeshPairJob& job = in.meshPairs[k];
+        job.contacts.clear();
+        contact_kernels::meshMeshContacts(job.a, job.b, job.workspace, job.contacts);
+      };
+      std::size_t triangles = 0;
+      for (std::size_t k = 0; k < in.meshPairCount; ++k)
+      {
+        triangles += in.meshPairs[k].a.triangles->size() + in.meshPairs[k].b.triangles->size();
+      }
+      if (in.meshPairCount > 1 && triangles >= ParallelNarrowPhaseTriangles)
+      {
+        tbb::parallel_for(std::size_t(0), in.meshPairCount, runJob);
+      }
+      else
+      {
+        for (std::size_t k = 0; k < in.meshPairCount; ++k)
+        {
+          runJob(k);
+        }
+      }
+    }
+    for (int i = 0; i < tissueCount; ++i)
+    {
+      const BoundingBox tissueBox = in.tissues[i].collision->bvh().bounds();
+      const ThickMeshView tissueView = contact_kernels::viewOf(*in.tissues[i].collision);
+      const SceneBody tissueBody{ SceneBodyKind::Tissue, i };
+      for (int u = 0; u < toolCount; ++u)
+      {
+        const RigidTool& tool = *in.tools[u];
+        if (!overlapping(tissueBox, tool.bounds()))
+        {
+          continue;
+        }
+        const SceneBody toolBody{ SceneBodyKind::Tool, u };
+        addToolPrimitiveContacts(
+          tool, tissueView, toolBody, tissueBody, false, Parameters.toolTissue.stiffness);
+        if (tool.hasMesh())
+        {
+          addMeshContacts(tissueView,
+            toolMeshView(tool),
+            tissueBody,
+            toolBody,
+            Parameters.toolTissue.stiffness,
+            2 * u);
+        }
+      }
+      for (int o = 0; o < obstacleCount; ++o)
+      {
+        if (overlapping(tissueBox, in.obstacles[o]->bvh().bounds()))
+        {
+          addMeshContacts(tissueView,
+            contact_kernels::viewOf(*in.obstacles[o]),
+            tissueBody,
+            SceneBody{ SceneBodyKind::Obstacle, o },
+            Parameters.tissueObstacle.stiffness,
+            -1);
+        }
+      }
+      for (int j = i + 1; j < tissueCount; ++j)
+      {
+        if (overlapping(tissueBox, in.tissues[j].collision->bvh().bounds()))
+        {
+          addMeshContacts(tissueView,
+            contact_kernels::viewOf(*in.tissues[j].collision),
+            tissueBody,
+            SceneBody{ SceneBodyKind::Tissue, j },
+            Parameters.tissueTissue.stiffness,
+            -1);
+        }
+      }
+    }
     for (int u = 0; u < toolCount; ++u)
     {
       const RigidTool& tool = *in.tools[u];
-      if (!overlapping(tissueBox, tool.bounds()))
-      {
-        continue;
-      }
+      const BoundingBox toolBox = tool.bounds();
       const SceneBody toolBody{ SceneBodyKind::Tool, u };
-      addToolPrimitiveContacts(
-        tool, tissueView, toolBody, tissueBody, false, Parameters.toolTissue.stiffness);
-      if (tool.hasMesh())
+      for (int o = 0; o < obstacleCount; ++o)
       {
-        addMeshContacts(tissueView,
-          toolMeshView(tool),
-          tissueBody,
-          toolBody,
-          Parameters.toolTissue.stiffness,
-          2 * u);
-      }
-    }
-    for (int o = 0; o < obstacleCount; ++o)
-    {
-      if (overlapping(tissueBox, in.obstacles[o]->bvh().bounds()))
-      {
-        addMeshContacts(tissueView,
-          contact_kernels::viewOf(*in.obstacles[o]),
-          tissueBody,
-          SceneBody{ SceneBodyKind::Obstacle, o },
-          Parameters.tissueObstacle.stiffness,
-          -1);
-      }
-    }
-    for (int j = i + 1; j < tissueCount; ++j)
-    {
-      if (overlapping(tissueBox, in.tissues[j].collision->bvh().bounds()))
-      {
-        addMeshContacts(tissueView,
-          contact_kernels::viewOf(*in.tissues[j].collision),
-          tissueBody,
-          SceneBody{ SceneBodyKind::Tissue, j },
-          Parameters.tissueTissue.stiffness,
-          -1);
-      }
-    }
-  }
-  for (int u = 0; u < toolCount; ++u)
-  {
-    const RigidTool& tool = *in.tools[u];
-    const BoundingBox toolBox = tool.bounds();
-    const SceneBody toolBody{ SceneBodyKind::Tool, u };
-    for (int o = 0; o < obstacleCount; ++o)
-    {
-      if (!overlapping(toolBox, in.obstacles[o]->bvh().bounds()))
-      {
-        continue;
-      }
-      const ThickMeshView obstacleView = contact_kernels::viewOf(*in.obstacles[o]);
-      const SceneBody obstacleBody{ SceneBodyKind::Obstacle, o };
-      addToolPrimitiveContacts(
-        tool, obstacleView, toolBody, obstacleBody, true, Parameters.toolObstacle.stiffness);
-      if (tool.hasMesh())
-      {
-        addMeshContacts(toolMeshView(tool),
-          obstacleView,
-          toolBody,
-          obstacleBody,
-          Parameters.toolObstacle.stiffness,
-          2 * u + 1);
+        if (!overlapping(toolBox, in.obstacles[o]->bvh().bounds()))
+        {
+          continue;
+        }
+        const ThickMeshView obstacleView = contact_kernels::viewOf(*in.obstacles[o]);
+        const SceneBody obstacleBody{ SceneBodyKind::Obstacle, o };
+        addToolPrimitiveContacts(
+          tool, obstacleView, toolBody, obstacleBody, true, Parameters.toolObstacle.stiffness);
+        if (tool.hasMesh())
+        {
+          addMeshContacts(toolMeshView(tool),
+            obstacleView,
+            toolBody,
+            obstacleBody,
+            Parameters.toolObstacle.stiffness,
+            2 * u + 1);
+        }
       }
     }
   }

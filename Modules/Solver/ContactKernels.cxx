@@ -193,77 +193,17 @@ void meshMeshContacts(const ThickMeshView& a,
   vertexFaceContacts(b, a, false, contacts);
 
   // Edge-edge: crossings of edges inside both (an edge of a coarse tissue
-  // triangle across a tool's edge); pairs met from several triangle pairs
-  // are reported once.
+  // triangle across a tool's edge). Each edge pair is tested once, by the
+  // triangles owning the two edges (TriangleBvh::ownedEdges), and only when
+  // no end of either edge has a vertex contact: there the vertex contacts
+  // already hold the surfaces (face to face) and an edge contact would
+  // count the same overlap again. A box test rejects most pairs before the
+  // closest points are computed.
   const auto& pa = *a.positions;
   const auto& pb = *b.positions;
   const auto& ra = *a.radii;
   const auto& rb = *b.radii;
   constexpr double inside = 1e-6;
-  workspace.edgeContacts.clear();
-  a.bvh->forEachOverlappingPair(*b.bvh,
-    [&](int ta, int tb)
-    {
-      const Triangle& triA = (*a.triangles)[ta];
-      const Triangle& triB = (*b.triangles)[tb];
-      for (int i = 0; i < 3; ++i)
-      {
-        const int a0 = triA[i];
-        const int a1 = triA[(i + 1) % 3];
-        for (int j = 0; j < 3; ++j)
-        {
-          const int b0 = triB[j];
-          const int b1 = triB[(j + 1) % 3];
-          const SegmentSegmentClosestPoints closest =
-            closestPointsBetweenSegments(pa[a0], pa[a1], pb[b0], pb[b1]);
-          const double s = closest.parameterOnFirst;
-          const double t = closest.parameterOnSecond;
-          if (s <= inside || s >= 1.0 - inside || t <= inside || t >= 1.0 - inside)
-          {
-            continue;
-          }
-          const double radius = (1.0 - s) * ra[a0] + s * ra[a1] + (1.0 - t) * rb[b0] + t * rb[b1] +
-                                a.contactDistance + b.contactDistance;
-          const double depth = radius - closest.distance;
-          if (!(depth > 0.0))
-          {
-            continue;
-          }
-          FeatureContact c;
-          c.verticesA = { { a0, a1, -1 } };
-          c.weightsA = Vector3(1.0 - s, s, 0.0);
-          c.verticesB = { { b0, b1, -1 } };
-          c.weightsB = Vector3(1.0 - t, t, 0.0);
-          c.pointA = closest.pointOnFirst;
-          c.pointB = closest.pointOnSecond;
-          c.depth = depth;
-          const Vector3 offset = c.pointA - c.pointB;
-          const double scale = (pa[a1] - pa[a0]).norm() + (pb[b1] - pb[b0]).norm();
-          if (closest.distance > 1e-12 * scale)
-          {
-            c.normal = offset / closest.distance;
-          }
-          else
-          {
-            // Crossing edges: perpendicular to both, toward A's triangle.
-            Vector3 n = (pa[a1] - pa[a0]).cross(pb[b1] - pb[b0]);
-            const Vector3 centreA = (pa[triA[0]] + pa[triA[1]] + pa[triA[2]]) / 3.0;
-            const Vector3 centreB = (pb[triB[0]] + pb[triB[1]] + pb[triB[2]]) / 3.0;
-            if (n.dot(centreA - centreB) < 0.0)
-            {
-              n = -n;
-            }
-            c.normal = n.norm() > 0.0 ? Vector3(n.normalized()) : Vector3(Vector3::UnitZ());
-          }
-          workspace.edgeContacts.push_back({ edgeKey(a0, a1), edgeKey(b0, b1), c });
-        }
-      }
-    });
-  auto byEdges = [](
-                   const MeshMeshWorkspace::EdgeContact& x, const MeshMeshWorkspace::EdgeContact& y)
-  { return x.edgeOfA != y.edgeOfA ? x.edgeOfA < y.edgeOfA : x.edgeOfB < y.edgeOfB; };
-  std::sort(workspace.edgeContacts.begin(), workspace.edgeContacts.end(), byEdges);
-  // One contact per edge pair, none where an end has a vertex contact.
   const std::size_t vertexContactsEnd = contacts.size();
   workspace.touchingA.resize(pa.size(), 0);
   workspace.touchingB.resize(pb.size(), 0);
@@ -283,21 +223,114 @@ void meshMeshContacts(const ThickMeshView& a,
     }
   };
   markVertices(1);
-  const auto& edges = workspace.edgeContacts;
-  for (std::size_t k = 0; k < edges.size(); ++k)
+  workspace.edgeContacts.clear();
+  const double margin = a.contactDistance + b.contactDistance;
+  auto edgeBox = [](const Vector3& p, const Vector3& q, double reach)
   {
-    const FeatureContact& c = edges[k].contact;
-    const bool repeated =
-      k > 0 && edges[k].edgeOfA == edges[k - 1].edgeOfA && edges[k].edgeOfB == edges[k - 1].edgeOfB;
-    const bool heldByVertices =
-      workspace.touchingA[c.verticesA[0]] || workspace.touchingA[c.verticesA[1]] ||
-      workspace.touchingB[c.verticesB[0]] || workspace.touchingB[c.verticesB[1]];
-    if (!repeated && !heldByVertices)
+    BoundingBox box(p);
+    box.extend(q);
+    box.min().array() -= reach;
+    box.max().array() += reach;
+    return box;
+  };
+  // Edge pair (a0, a1) of A's triangle triA, (b0, b1) of B's triB.
+  auto testEdgePair = [&](
+                        int a0, int a1, int b0, int b1, const Triangle& triA, const Triangle& triB)
+  {
+    const SegmentSegmentClosestPoints closest =
+      closestPointsBetweenSegments(pa[a0], pa[a1], pb[b0], pb[b1]);
+    const double s = closest.parameterOnFirst;
+    const double t = closest.parameterOnSecond;
+    if (s <= inside || s >= 1.0 - inside || t <= inside || t >= 1.0 - inside)
     {
-      contacts.push_back(c);
+      return;
     }
-  }
+    const double radius =
+      (1.0 - s) * ra[a0] + s * ra[a1] + (1.0 - t) * rb[b0] + t * rb[b1] + margin;
+    const double depth = radius - closest.distance;
+    if (!(depth > 0.0))
+    {
+      return;
+    }
+    FeatureContact c;
+    c.verticesA = { { a0, a1, -1 } };
+    c.weightsA = Vector3(1.0 - s, s, 0.0);
+    c.verticesB = { { b0, b1, -1 } };
+    c.weightsB = Vector3(1.0 - t, t, 0.0);
+    c.pointA = closest.pointOnFirst;
+    c.pointB = closest.pointOnSecond;
+    c.depth = depth;
+    const Vector3 offset = c.pointA - c.pointB;
+    const double scale = (pa[a1] - pa[a0]).norm() + (pb[b1] - pb[b0]).norm();
+    if (closest.distance > 1e-12 * scale)
+    {
+      c.normal = offset / closest.distance;
+    }
+    else
+    {
+      // Crossing edges: perpendicular to both, toward A's triangle.
+      Vector3 n = (pa[a1] - pa[a0]).cross(pb[b1] - pb[b0]);
+      const Vector3 centreA = (pa[triA[0]] + pa[triA[1]] + pa[triA[2]]) / 3.0;
+      const Vector3 centreB = (pb[triB[0]] + pb[triB[1]] + pb[triB[2]]) / 3.0;
+      if (n.dot(centreA - centreB) < 0.0)
+      {
+        n = -n;
+      }
+      c.normal = n.norm() > 0.0 ? Vector3(n.normalized()) : Vector3(Vector3::UnitZ());
+    }
+    workspace.edgeContacts.push_back({ edgeKey(a0, a1), edgeKey(b0, b1), c });
+  };
+  // Each owned edge of B whose ends are free queries A's tree with its box
+  // (tighter than its triangle's); each owned, free edge of A in the
+  // triangles found is tested once. (Measured on the knee of table 6-2
+  // against descending both trees to triangle pairs: 1.6 vs 2.2 ms per
+  // step in setting 2, 0.54 vs 0.60 ms in setting 3.)
+  // B's triangles near A only (its tree prunes the rest).
+  b.bvh->forEachOverlap(a.bvh->bounds(),
+    [&](int tb)
+    {
+      const std::uint8_t ownedB = b.bvh->ownedEdges(tb);
+      const Triangle& triB = (*b.triangles)[tb];
+      for (int j = 0; j < 3; ++j)
+      {
+        const int b0 = triB[j];
+        const int b1 = triB[(j + 1) % 3];
+        if (!(ownedB & (1u << j)) || workspace.touchingB[b0] || workspace.touchingB[b1])
+        {
+          continue;
+        }
+        const BoundingBox boxB =
+          edgeBox(pb[b0], pb[b1], std::max(rb[b0], rb[b1]) + b.contactDistance);
+        a.bvh->forEachOverlap(boxB,
+          [&](int ta)
+          {
+            const std::uint8_t ownedA = a.bvh->ownedEdges(ta);
+            const Triangle& triA = (*a.triangles)[ta];
+            for (int i = 0; i < 3; ++i)
+            {
+              const int a0 = triA[i];
+              const int a1 = triA[(i + 1) % 3];
+              if (!(ownedA & (1u << i)) || workspace.touchingA[a0] || workspace.touchingA[a1] ||
+                  !edgeBox(pa[a0], pa[a1], std::max(ra[a0], ra[a1]) + a.contactDistance)
+                     .intersects(boxB))
+              {
+                continue;
+              }
+              testEdgePair(a0, a1, b0, b1, triA, triB);
+            }
+          });
+      }
+    });
   markVertices(0);
+  // In a fixed order (by edges), whatever order the trees visit the pairs.
+  auto byEdges = [](
+                   const MeshMeshWorkspace::EdgeContact& x, const MeshMeshWorkspace::EdgeContact& y)
+  { return x.edgeOfA != y.edgeOfA ? x.edgeOfA < y.edgeOfA : x.edgeOfB < y.edgeOfB; };
+  std::sort(workspace.edgeContacts.begin(), workspace.edgeContacts.end(), byEdges);
+  for (const MeshMeshWorkspace::EdgeContact& edge : workspace.edgeContacts)
+  {
+    contacts.push_back(edge.contact);
+  }
 
   for (std::size_t k = firstContact; k < contacts.size(); ++k)
   {
