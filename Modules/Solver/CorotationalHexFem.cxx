@@ -39,6 +39,12 @@ void checkSettings(const CorotationalHexFemSettings& s)
   {
     problem << "conjugate gradient tolerance and iteration limit must be positive";
   }
+  else if (s.refactorizationIterations < 0 || s.staleFactorIterationBudget < 0)
+  {
+    problem << "refactorization iterations and stale-factor iteration budget must not be "
+               "negative (got "
+            << s.refactorizationIterations << ", " << s.staleFactorIterationBudget << ")";
+  }
   if (problem.tellp() != 0)
   {
     throw InvalidInputError("co-rotational FEM settings: " + problem.str());
@@ -66,6 +72,9 @@ struct CorotationalHexFem::LinearSystem
   /// The factor is of the current matrix (not of an earlier step's).
   bool factorValid = false;
   int factorizations = 0;
+  /// Iterations beyond the first spent with the present factor: the price
+  /// of its staleness, paid down by refactorizing (see Settings).
+  int excessIterations = 0;
   Eigen::VectorXd residual, direction, preconditioned, product;
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
 };
@@ -696,6 +705,7 @@ bool CorotationalHexFem::factorize(std::string& message)
   }
   s.cholmod.factorize(s.matrix);
   ++s.factorizations;
+  s.excessIterations = 0;
   s.factorValid = s.cholmod.info() == Eigen::Success;
   if (!s.factorValid)
   {
@@ -714,6 +724,10 @@ bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
   LinearSystem& s = *System;
   const auto A = s.matrix.selfadjointView<Eigen::Upper>();
   const double target = Settings.conjugateGradientTolerance * s.rhs.norm();
+  if (s.excessIterations > Settings.staleFactorIterationBudget)
+  {
+    s.factorValid = false;
+  }
   for (int attempt = 0; attempt < 2; ++attempt)
   {
     if (!s.factorValid && !factorize(message))
@@ -741,6 +755,7 @@ bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
     }
     if (s.residual.norm() <= target)
     {
+      s.excessIterations += std::max(0, iterations - 1);
       if (!x.allFinite())
       {
         message = "the solution is not finite (NaN or infinity)";
@@ -855,6 +870,16 @@ bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
 void CorotationalHexFem::invalidateFactor()
 {
   System->factorValid = false;
+}
+
+void CorotationalHexFem::chargeStaleIterations(int iterations)
+{
+  LinearSystem& s = *System;
+  s.excessIterations += std::max(0, iterations - 1);
+  if (s.excessIterations > Settings.staleFactorIterationBudget)
+  {
+    s.factorValid = false;
+  }
 }
 
 SolverResult CorotationalHexFem::finishCoupledStep(const Eigen::VectorXd& solution)
