@@ -154,8 +154,15 @@ private:
 struct TriangleMask
 {
   const std::vector<char>* allowed = nullptr;
+  /// Sorted triangles allowed as well (null: none).
+  const std::vector<int>* alsoAllowed = nullptr;
 
-  bool operator()(int t) const { return allowed == nullptr || (*allowed)[t] != 0; }
+  bool operator()(int t) const
+  {
+    return allowed == nullptr || (*allowed)[t] != 0 ||
+           (alsoAllowed != nullptr &&
+             std::binary_search(alsoAllowed->begin(), alsoAllowed->end(), t));
+  }
   /// Triangles of vertex v that may be used.
   int vertexTriangleCount(const TriangleMeshAdjacency& adjacency, int v) const
   {
@@ -167,7 +174,7 @@ struct TriangleMask
     for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
          ++t)
     {
-      count += (*allowed)[*t] != 0 ? 1 : 0;
+      count += (*this)(*t) ? 1 : 0;
     }
     return count;
   }
@@ -899,7 +906,7 @@ SurfacePath GeodesicPathFinder::shortestPath(int source,
   int target,
   GeodesicPathStatistics* statistics) const
 {
-  return shortestPathOn(source, target, nullptr, statistics);
+  return shortestPathOn(source, target, nullptr, nullptr, statistics);
 }
 
 SurfacePath GeodesicPathFinder::shortestPathWithin(int source,
@@ -913,16 +920,37 @@ SurfacePath GeodesicPathFinder::shortestPathWithin(int source,
                             std::to_string(allowedTriangles.size()) + " entries, the mesh " +
                             std::to_string(Mesh.triangleCount()) + " triangles");
   }
-  return shortestPathOn(source, target, &allowedTriangles, statistics);
+  return shortestPathOn(source, target, &allowedTriangles, nullptr, statistics);
+}
+
+SurfacePath GeodesicPathFinder::shortestPathWithin(int source,
+  int target,
+  const std::vector<char>& allowedTriangles,
+  const std::vector<int>& alsoAllowedTriangles,
+  GeodesicPathStatistics* statistics) const
+{
+  if (allowedTriangles.size() != Mesh.triangleCount() ||
+      !std::is_sorted(alsoAllowedTriangles.begin(), alsoAllowedTriangles.end()) ||
+      (!alsoAllowedTriangles.empty() &&
+        (alsoAllowedTriangles.front() < 0 ||
+          alsoAllowedTriangles.back() >= static_cast<int>(Mesh.triangleCount()))))
+  {
+    throw InvalidInputError("geodesic path on " + meshLabel(Mesh) +
+                            ": the triangle mask must have one entry per triangle (" +
+                            std::to_string(Mesh.triangleCount()) +
+                            ") and the extra triangles must be sorted and in range");
+  }
+  return shortestPathOn(source, target, &allowedTriangles, &alsoAllowedTriangles, statistics);
 }
 
 SurfacePath GeodesicPathFinder::shortestPathOn(int source,
   int target,
   const std::vector<char>* allowedTriangles,
+  const std::vector<int>* alsoAllowedTriangles,
   GeodesicPathStatistics* statistics) const
 {
   checkVertices(source, target);
-  const TriangleMask mask{ allowedTriangles };
+  const TriangleMask mask{ allowedTriangles, alsoAllowedTriangles };
   GeodesicPathStatistics stats;
   if (source == target)
   {

@@ -95,6 +95,15 @@ public:
     const std::vector<char>& allowedTriangles,
     GeodesicPathStatistics* statistics = nullptr) const;
 
+  /// As above, with the triangles in `alsoAllowedTriangles` (sorted
+  /// indices, a handful) allowed as well: a shared mask plus a few
+  /// triangles of one path's own, without copying the mask.
+  SurfacePath shortestPathWithin(int source,
+    int target,
+    const std::vector<char>& allowedTriangles,
+    const std::vector<int>& alsoAllowedTriangles,
+    GeodesicPathStatistics* statistics = nullptr) const;
+
   /// The Dijkstra (edge-path) distance between two vertices (A* search),
   /// an upper bound of the geodesic length, for tests (the patch bound also
   /// steps across edges). Throws InvalidInputError like shortestPath.
@@ -110,6 +119,7 @@ private:
   SurfacePath shortestPathOn(int source,
     int target,
     const std::vector<char>* allowedTriangles,
+    const std::vector<int>* alsoAllowedTriangles,
     GeodesicPathStatistics* statistics) const;
 
   const TriangleMesh& Mesh;

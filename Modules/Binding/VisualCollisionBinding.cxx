@@ -123,13 +123,24 @@ std::uint64_t edgeKey(int a, int b)
   return (lo << 32) | hi;
 }
 
+/// Path points this close (in edge parameter) to another point on the same
+/// edge or to its end are one vertex: exact geodesics often run along a
+/// line of vertices a round-off away from them (the meniscus's inner rim),
+/// and keeping such points apart would leave sliver triangles of no area.
+/// The path moves by at most this fraction of an edge.
+constexpr double PathMergeTolerance = 1e-3;
+
+/// A border collision vertex may take a point inside a visual edge at least
+/// this far (in edge parameter) from both ends; nearer, the end vertex.
+constexpr double EdgePointMargin = 0.1;
+
 /// One collision vertex's wish for a visual vertex on one side (slot 0: +,
 /// slot 1: -), candidates best first.
 struct PairingClaim
 {
   int collisionVertex = -1;
   int slot = 0;
-  std::vector<std::pair<double, int>> candidates; // (distance, visual vertex)
+  std::vector<std::pair<double, SurfacePoint>> candidates; // (distance, point), best first
 };
 
 } // namespace
@@ -363,8 +374,10 @@ void checkInputs(const TriangleMesh& visual,
   }
 }
 
-/// 5.2.1: the visual vertex of every collision vertex and side.
-std::vector<std::array<int, 2>> pairCollisionVertices(const TriangleMesh& visual,
+/// 5.2.1: the visual point of every collision vertex and side: a visual
+/// vertex, or for a border collision vertex possibly a point inside a
+/// visual edge (inserted as a vertex before the paths are computed).
+std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMesh& visual,
   const TriangleMeshAdjacency& visualAdjacency,
   const TriangleMesh& collision,
   const std::vector<double>& radii,
@@ -391,15 +404,50 @@ std::vector<std::array<int, 2>> pairCollisionVertices(const TriangleMesh& visual
         {
           return; // one visual vertex for both sides
         }
-        // The closest visual vertices (a short list for conflicts).
+        // The closest visual vertices (a short list for conflicts) and the
+        // closest points inside the edges around the closest one: on a
+        // rim only a cell thick (the sheets' side walls), every vertex
+        // lies on the upper or the lower edge of the wall, but an edge
+        // point lies half-way, where the rim paths (the equator between
+        // the two sides) belong.
+        std::vector<std::pair<double, int>> nearest;
         for (std::size_t w = 0; w < visual.vertexCount(); ++w)
         {
-          claim.candidates.emplace_back((visual.positions[w] - origin).norm(), static_cast<int>(w));
+          nearest.emplace_back((visual.positions[w] - origin).norm(), static_cast<int>(w));
         }
-        const std::size_t keep = std::min<std::size_t>(16, claim.candidates.size());
-        std::partial_sort(
-          claim.candidates.begin(), claim.candidates.begin() + keep, claim.candidates.end());
-        claim.candidates.resize(keep);
+        const std::size_t keep = std::min<std::size_t>(16, nearest.size());
+        std::partial_sort(nearest.begin(), nearest.begin() + keep, nearest.end());
+        nearest.resize(keep);
+        for (const auto& [distance, w] : nearest)
+        {
+          claim.candidates.emplace_back(distance, SurfacePoint::atVertex(w));
+        }
+        for (int w : ringNeighbourhood(visual, visualAdjacency, { nearest.front().second }, 1))
+        {
+          for (const int* t = visualAdjacency.vertexTrianglesBegin(w);
+               t != visualAdjacency.vertexTrianglesEnd(w);
+               ++t)
+          {
+            const Triangle& tri = visual.triangles[*t];
+            for (int k = 0; k < 3; ++k)
+            {
+              const int a = std::min(tri[k], tri[(k + 1) % 3]);
+              const int b = std::max(tri[k], tri[(k + 1) % 3]);
+              const Vector3 d = visual.positions[b] - visual.positions[a];
+              const double along = d.dot(origin - visual.positions[a]) / d.squaredNorm();
+              // Near an end the vertex serves (no sliver triangles).
+              if (along > EdgePointMargin && along < 1.0 - EdgePointMargin)
+              {
+                const Vector3 x = visual.positions[a] + along * d;
+                claim.candidates.emplace_back(
+                  (x - origin).norm(), SurfacePoint::onEdge(a, b, along));
+              }
+            }
+          }
+        }
+        std::stable_sort(claim.candidates.begin(),
+          claim.candidates.end(),
+          [](const auto& x, const auto& y) { return x.first < y.first; });
         if (claim.candidates.front().first > reach)
         {
           errors[c] = nameOf(visual, "visual") + " is not thin at border collision vertex " +
@@ -429,15 +477,20 @@ std::vector<std::array<int, 2>> pairCollisionVertices(const TriangleMesh& visual
       const Triangle& hit = visual.triangles[triangle];
       const std::vector<int> nearby =
         ringNeighbourhood(visual, visualAdjacency, { hit[0], hit[1], hit[2] }, 2);
+      std::vector<std::pair<double, int>> onSide;
       for (int w : nearby)
       {
         // Only vertices on this side of the collision vertex.
         if ((visual.positions[w] - origin).dot(direction) > 0.0)
         {
-          claim.candidates.emplace_back(distanceToLine(visual.positions[w], origin, direction), w);
+          onSide.emplace_back(distanceToLine(visual.positions[w], origin, direction), w);
         }
       }
-      std::sort(claim.candidates.begin(), claim.candidates.end());
+      std::sort(onSide.begin(), onSide.end());
+      for (const auto& [distance, w] : onSide)
+      {
+        claim.candidates.emplace_back(distance, SurfacePoint::atVertex(w));
+      }
     });
   for (const std::string& error : errors)
   {
@@ -465,20 +518,41 @@ std::vector<std::array<int, 2>> pairCollisionVertices(const TriangleMesh& visual
       return cx.first != cy.first ? cx.first < cy.first : x < y;
     });
   std::vector<char> taken(visual.vertexCount(), 0);
-  std::vector<std::array<int, 2>> paired(n, { { -1, -1 } });
+  // Edge points taken, per edge: parameters (another point on the edge
+  // must keep EdgePointMargin away, or the two would merge).
+  std::unordered_map<std::uint64_t, std::vector<double>> takenOnEdge;
+  std::vector<std::array<SurfacePoint, 2>> paired(n);
+  std::vector<std::array<char, 2>> found(n, { { 0, 0 } });
   for (std::size_t c : order)
   {
     const PairingClaim& claim = claims[c];
-    for (const auto& [distance, w] : claim.candidates)
+    for (const auto& [distance, point] : claim.candidates)
     {
-      if (!taken[w])
+      if (point.isVertex())
       {
-        taken[w] = 1;
-        paired[claim.collisionVertex][claim.slot] = w;
-        break;
+        if (taken[point.vertex])
+        {
+          continue;
+        }
+        taken[point.vertex] = 1;
       }
+      else
+      {
+        auto& onEdge = takenOnEdge[edgeKey(point.edgeStart, point.edgeEnd)];
+        const bool crowded = std::any_of(onEdge.begin(),
+          onEdge.end(),
+          [&](double t) { return std::abs(t - point.edgeParameter) < EdgePointMargin; });
+        if (crowded)
+        {
+          continue;
+        }
+        onEdge.push_back(point.edgeParameter);
+      }
+      paired[claim.collisionVertex][claim.slot] = point;
+      found[claim.collisionVertex][claim.slot] = 1;
+      break;
     }
-    if (paired[claim.collisionVertex][claim.slot] < 0)
+    if (!found[claim.collisionVertex][claim.slot])
     {
       throw InvalidInputError(
         "collision vertex " + std::to_string(claim.collisionVertex) + " of " +
@@ -641,6 +715,19 @@ struct PathRequest
   int side;
   int source;
   int target;
+  /// An inner edge joining two border vertices: both ends on the rim.
+  bool chord = false;
+};
+
+/// Where the side paths may run: each side's half of the visual surface
+/// (split by the rim paths), and each half without the triangles touching
+/// the rim paths (its core).
+struct SideRegions
+{
+  const TriangleMeshAdjacency* adjacency = nullptr;
+  std::vector<char> onRim; ///< per vertex: on a rim path
+  std::array<std::vector<char>, 2> halves;
+  std::array<std::vector<char>, 2> cores;
 };
 
 /// The requested paths, in parallel or not (same result), in blocks so that
@@ -649,7 +736,7 @@ struct PathRequest
 /// halves[1].
 std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
   const std::vector<PathRequest>& requests,
-  const std::array<std::vector<char>, 2>* halves,
+  const SideRegions* regions,
   bool parallel,
   const BindingProgress& progress,
   double from,
@@ -659,9 +746,51 @@ std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
   auto computePath = [&](std::size_t k)
   {
     const PathRequest& r = requests[k];
-    paths[k] = halves && r.side != 0
-                 ? finder.shortestPathWithin(r.source, r.target, (*halves)[r.side > 0 ? 0 : 1])
-                 : finder.shortestPath(r.source, r.target);
+    if (regions == nullptr || r.side == 0)
+    {
+      paths[k] = finder.shortestPath(r.source, r.target);
+      return;
+    }
+    const int slot = r.side > 0 ? 0 : 1;
+    paths[k] = finder.shortestPathWithin(r.source, r.target, regions->halves[slot]);
+    // Between two rim points the shortest path on the half may run all
+    // along the rim paths (a thin corner triangle: around the corner is
+    // barely longer than over it), leaving the triangle's region no width.
+    // Such a chord is recomputed off the rim paths: on the core of its
+    // half and the triangles around its own two ends, if they connect.
+    const bool alongTheRim = r.chord && std::all_of(paths[k].points.begin(),
+                                          paths[k].points.end(),
+                                          [&](const SurfacePoint& point) {
+                                            return point.isVertex() && regions->onRim[point.vertex];
+                                          });
+    if (!alongTheRim)
+    {
+      return;
+    }
+    std::vector<int> ends;
+    for (int v : { r.source, r.target })
+    {
+      for (const int* t = regions->adjacency->vertexTrianglesBegin(v);
+           t != regions->adjacency->vertexTrianglesEnd(v);
+           ++t)
+      {
+        if (regions->halves[slot][*t])
+        {
+          ends.push_back(*t);
+        }
+      }
+    }
+    std::sort(ends.begin(), ends.end());
+    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+    try
+    {
+      paths[k] = finder.shortestPathWithin(r.source, r.target, regions->cores[slot], ends);
+    }
+    catch (const InvalidInputError&)
+    {
+      // The core does not connect the ends: the path along the rim stays
+      // (the flood fill reports the region without width).
+    }
   };
   const std::size_t block = std::max<std::size_t>(1, requests.size() / 20);
   for (std::size_t begin = 0; begin < requests.size(); begin += block)
@@ -848,8 +977,69 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   binding.collisionPositions = collision.positions;
   binding.collisionTriangles = collision.triangles;
   binding.collisionEdges = topology.edges;
-  binding.pairedVisualVertices =
+  const std::vector<std::array<SurfacePoint, 2>> pairedPoints =
     pairCollisionVertices(visual, visualAdjacency, collision, radii, topology, settings);
+  // Paired points inside visual edges become vertices first (one-point
+  // paths); the visual vertices keep their indices.
+  std::vector<SurfacePath> pairedEdgePoints;
+  for (const auto& pair : pairedPoints)
+  {
+    for (int slot = 0; slot < 2; ++slot)
+    {
+      if (!pair[slot].isVertex() &&
+          (slot == 0 ||
+            !(pair[1].edgeStart == pair[0].edgeStart && pair[1].edgeEnd == pair[0].edgeEnd &&
+              pair[1].edgeParameter == pair[0].edgeParameter)))
+      {
+        SurfacePath single;
+        single.points.push_back(pair[slot]);
+        pairedEdgePoints.push_back(std::move(single));
+      }
+    }
+  }
+  RemeshedSurface paired;
+  if (!pairedEdgePoints.empty())
+  {
+    paired = insertPaths(visual, pairedEdgePoints);
+  }
+  const TriangleMesh* startMesh = &visual;
+  const TriangleMeshAdjacency* startAdjacencyPointer = &visualAdjacency;
+  TriangleMeshAdjacency pairedAdjacency;
+  if (!pairedEdgePoints.empty())
+  {
+    pairedAdjacency = TriangleMeshAdjacency(paired.mesh);
+    startMesh = &paired.mesh;
+    startAdjacencyPointer = &pairedAdjacency;
+  }
+  const TriangleMesh& start = *startMesh;
+  const TriangleMeshAdjacency& startAdjacency = *startAdjacencyPointer;
+  binding.pairedVisualVertices.assign(pairedPoints.size(), { { -1, -1 } });
+  {
+    std::size_t next = 0;
+    for (std::size_t v = 0; v < pairedPoints.size(); ++v)
+    {
+      for (int slot = 0; slot < 2; ++slot)
+      {
+        const SurfacePoint& point = pairedPoints[v][slot];
+        if (point.isVertex())
+        {
+          binding.pairedVisualVertices[v][slot] = point.vertex;
+        }
+        else if (slot == 1 && binding.pairedVisualVertices[v][0] >= 0 &&
+                 !pairedPoints[v][0].isVertex() &&
+                 pairedPoints[v][0].edgeStart == point.edgeStart &&
+                 pairedPoints[v][0].edgeEnd == point.edgeEnd &&
+                 pairedPoints[v][0].edgeParameter == point.edgeParameter)
+        {
+          binding.pairedVisualVertices[v][1] = binding.pairedVisualVertices[v][0];
+        }
+        else
+        {
+          binding.pairedVisualVertices[v][slot] = paired.pathVertices[next++].front();
+        }
+      }
+    }
+  }
 
   // 5.2.2 Geodesic paths: one per border edge (the rim path), two per inner
   // edge. First the rim paths, inserted into the mesh (5.2.3): together
@@ -871,13 +1061,14 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
       rimRequests.push_back({ static_cast<int>(e), 0, a[0], b[0] });
       continue;
     }
-    innerRequests.push_back({ static_cast<int>(e), 1, a[0], b[0] });
-    innerRequests.push_back({ static_cast<int>(e), -1, a[1], b[1] });
+    const bool chord = topology.borderVertex[edge[0]] && topology.borderVertex[edge[1]];
+    innerRequests.push_back({ static_cast<int>(e), 1, a[0], b[0], chord });
+    innerRequests.push_back({ static_cast<int>(e), -1, a[1], b[1], chord });
   }
   const double pathsDone = static_cast<double>(rimRequests.size() + innerRequests.size());
   RemeshedSurface rimmed;
   {
-    const GeodesicPathFinder finder(visual, visualAdjacency);
+    const GeodesicPathFinder finder(start, startAdjacency);
     const std::vector<SurfacePath> rimPaths = computePaths(finder,
       rimRequests,
       nullptr,
@@ -886,7 +1077,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
       0.1,
       0.1 + 0.6 * rimRequests.size() / pathsDone);
     report(progress, 0.1 + 0.6 * rimRequests.size() / pathsDone, "re-meshing along the rim paths");
-    rimmed = insertPaths(visual, rimPaths);
+    rimmed = insertPaths(start, rimPaths, PathMergeTolerance);
   }
   const TriangleMeshAdjacency rimmedAdjacency(rimmed.mesh);
   const std::vector<std::int8_t> half = surfaceHalves(rimmed.mesh,
@@ -895,13 +1086,29 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     collision,
     binding.pairedVisualVertices,
     topology);
-  std::array<std::vector<char>, 2> halfMask; // + and -
-  for (int slot = 0; slot < 2; ++slot)
+  SideRegions regions; // + and -
+  regions.adjacency = &rimmedAdjacency;
   {
-    halfMask[slot].resize(half.size());
-    for (std::size_t t = 0; t < half.size(); ++t)
+    std::vector<char>& onRim = regions.onRim;
+    onRim.assign(rimmed.mesh.vertexCount(), 0);
+    for (const std::vector<int>& path : rimmed.pathVertices)
     {
-      halfMask[slot][t] = half[t] == (slot == 0 ? 1 : -1) ? 1 : 0;
+      for (int v : path)
+      {
+        onRim[v] = 1;
+      }
+    }
+    for (int slot = 0; slot < 2; ++slot)
+    {
+      regions.halves[slot].resize(half.size());
+      regions.cores[slot].resize(half.size());
+      for (std::size_t t = 0; t < half.size(); ++t)
+      {
+        const Triangle& tri = rimmed.mesh.triangles[t];
+        regions.halves[slot][t] = half[t] == (slot == 0 ? 1 : -1) ? 1 : 0;
+        regions.cores[slot][t] =
+          regions.halves[slot][t] && !onRim[tri[0]] && !onRim[tri[1]] && !onRim[tri[2]] ? 1 : 0;
+      }
     }
   }
   std::vector<SurfacePath> innerPaths;
@@ -909,7 +1116,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     const GeodesicPathFinder finder(rimmed.mesh, rimmedAdjacency);
     innerPaths = computePaths(finder,
       innerRequests,
-      &halfMask,
+      &regions,
       settings.parallel,
       progress,
       0.1 + 0.6 * rimRequests.size() / pathsDone,
@@ -932,7 +1139,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     allPaths.push_back(std::move(path));
   }
   allPaths.insert(allPaths.end(), innerPaths.begin(), innerPaths.end());
-  RemeshedSurface remeshed = insertPaths(rimmed.mesh, allPaths);
+  RemeshedSurface remeshed = insertPaths(rimmed.mesh, allPaths, PathMergeTolerance);
   binding.visual = std::move(remeshed.mesh);
   const TriangleMesh& mesh = binding.visual;
   for (std::size_t k = 0; k < requests.size(); ++k)

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <queue>
 #include <set>
 
 using namespace thintissue;
@@ -171,11 +172,50 @@ void checkBinding(const TriangleMesh& original,
     EXPECT_EQ(walked, boundaryNeighbours.size());
   }
 
-  // Paths: from the right vertices, along mesh edges, no longer than the
-  // edge path between the same vertices on the original mesh.
+  // Paths: from the right vertices, along mesh edges, as short as the edge
+  // path between the same vertices (on the re-meshed surface, where the
+  // paired points inside visual edges are vertices; a side's path against
+  // edge paths over that side's triangles, the half it is kept on).
   const TriangleMeshAdjacency adjacency(mesh);
-  const TriangleMeshAdjacency originalAdjacency(original);
-  const GeodesicPathFinder originalFinder(original, originalAdjacency);
+  auto edgePathLength = [&](int source, int target, int side)
+  {
+    std::vector<double> distance(mesh.vertexCount(), 1e300);
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    distance[source] = 0.0;
+    queue.emplace(0.0, source);
+    while (!queue.empty())
+    {
+      const auto [d, v] = queue.top();
+      queue.pop();
+      if (v == target)
+      {
+        return d;
+      }
+      if (d > distance[v])
+      {
+        continue;
+      }
+      for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
+           ++t)
+      {
+        if (side != 0 && b.triangleSide[*t] != side)
+        {
+          continue;
+        }
+        for (int w : mesh.triangles[*t])
+        {
+          const double next = d + (mesh.positions[w] - mesh.positions[v]).norm();
+          if (next < distance[w])
+          {
+            distance[w] = next;
+            queue.emplace(next, w);
+          }
+        }
+      }
+    }
+    return 1e300;
+  };
   for (const BindingPath& path : b.paths)
   {
     const auto& edge = b.collisionEdges[path.collisionEdge];
@@ -188,8 +228,11 @@ void checkBinding(const TriangleMesh& original,
       EXPECT_GE(adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]), 0);
     }
     const double edgePath =
-      originalFinder.edgePathLength(path.visualVertices.front(), path.visualVertices.back());
-    EXPECT_LE(path.length, edgePath * (1.0 + 1e-12));
+      edgePathLength(path.visualVertices.front(), path.visualVertices.back(), path.side);
+    // The re-meshed surface holds the path's own edges, so the edge path
+    // is at most the path; the path is the shortest up to the points the
+    // re-meshing merged (each moved by at most 1e-3 of its edge).
+    EXPECT_LE(path.length, edgePath * (1.0 + 5e-3));
     EXPECT_GE(path.length,
       (mesh.positions[path.visualVertices.front()] - mesh.positions[path.visualVertices.back()])
           .norm() *
