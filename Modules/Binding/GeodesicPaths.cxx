@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <string>
 #include <utility>
@@ -568,6 +569,165 @@ void buildPatch(const TriangleMesh& mesh,
   }
 }
 
+/// The straight segment from vertex `source` to vertex `target` walked
+/// across the surface, triangle by triangle, if it lies on the surface:
+/// every triangle it crosses (all allowed by `mask`) contains it. A straight
+/// segment is the shortest of all curves between its ends, so such a path
+/// is the exact geodesic whatever the rest of the surface is: flat regions
+/// (most of a sheet's paths) need no CGAL patch. Nothing when the segment
+/// leaves the surface, meets a masked triangle, or the walk stalls.
+std::optional<SurfacePath> straightPathOnSurface(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency,
+  const TriangleMask& mask,
+  int source,
+  int target)
+{
+  const std::vector<Vector3>& p = mesh.positions;
+  const Vector3 start = p[source];
+  const Vector3 direction = p[target] - start;
+  const double length = direction.norm();
+  if (!(length > 0.0))
+  {
+    return std::nullopt;
+  }
+  // Relative tolerances: in the plane (sines) and along edges.
+  constexpr double PlaneTolerance = 1e-10;
+  constexpr double EdgeTolerance = 1e-10;
+  auto inPlane = [&](int t)
+  {
+    const Triangle& c = mesh.triangles[t];
+    const Vector3 n = (p[c[1]] - p[c[0]]).cross(p[c[2]] - p[c[0]]);
+    const double scale = n.norm();
+    return scale > 0.0 && std::abs(n.dot(direction)) <= PlaneTolerance * scale * length &&
+           std::abs(n.dot(start - p[c[0]])) <= PlaneTolerance * scale * length;
+  };
+  SurfacePath path;
+  path.points.push_back(SurfacePoint::atVertex(source));
+  // The walk's state: at a vertex (vertex >= 0) or inside edge (a, b) of
+  // triangle `from`, heading into the triangle across it.
+  int vertex = source;
+  int edgeA = -1;
+  int edgeB = -1;
+  int from = -1;
+  double travelled = 0.0; // parameter s of the present point
+  const std::size_t limit = 4 * mesh.triangleCount() + 16;
+  for (std::size_t step = 0; step < limit; ++step)
+  {
+    int triangle = -1;
+    if (vertex >= 0)
+    {
+      // The triangle of the vertex's fan whose angle holds the direction.
+      for (const int* t = adjacency.vertexTrianglesBegin(vertex);
+           t != adjacency.vertexTrianglesEnd(vertex);
+           ++t)
+      {
+        if (!mask(*t) || !inPlane(*t))
+        {
+          continue;
+        }
+        const Triangle& c = mesh.triangles[*t];
+        const int k = c[0] == vertex ? 0 : (c[1] == vertex ? 1 : 2);
+        const Vector3 toP = p[c[(k + 1) % 3]] - p[vertex];
+        const Vector3 toQ = p[c[(k + 2) % 3]] - p[vertex];
+        const Vector3 n = toP.cross(toQ);
+        const double slack = -EdgeTolerance * n.norm() * length;
+        if (toP.cross(direction).dot(n) >= slack * toP.norm() &&
+            direction.cross(toQ).dot(n) >= slack * toQ.norm())
+        {
+          triangle = *t;
+          break;
+        }
+      }
+    }
+    else
+    {
+      const int e = adjacency.findEdge(edgeA, edgeB);
+      for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
+      {
+        if (*t != from && mask(*t) && inPlane(*t))
+        {
+          triangle = *t;
+        }
+      }
+    }
+    if (triangle < 0)
+    {
+      return std::nullopt;
+    }
+    const Triangle& c = mesh.triangles[triangle];
+    if (c[0] == target || c[1] == target || c[2] == target)
+    {
+      // The triangle is convex and holds the present point and the target.
+      path.points.push_back(SurfacePoint::atVertex(target));
+      path.length = length;
+      return path;
+    }
+    // Leave across the edge (not through the present point) that the line
+    // meets farthest along: with the line x(s) = start + s d and edge
+    // u + t (v - u), solved in the triangle's plane.
+    const Vector3 n = (p[c[1]] - p[c[0]]).cross(p[c[2]] - p[c[0]]);
+    double bestS = -Infinity;
+    int bestK = -1;
+    double bestT = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int u = c[k];
+      const int v = c[(k + 1) % 3];
+      if (u == vertex || v == vertex ||
+          (std::min(u, v) == std::min(edgeA, edgeB) && std::max(u, v) == std::max(edgeA, edgeB)))
+      {
+        continue;
+      }
+      const Vector3 edge = p[v] - p[u];
+      const double denominator = direction.cross(edge).dot(n);
+      if (denominator == 0.0)
+      {
+        continue;
+      }
+      const Vector3 offset = p[u] - start;
+      const double along = offset.cross(edge).dot(n) / denominator;
+      const double t = offset.cross(direction).dot(n) / denominator;
+      if (t >= -EdgeTolerance && t <= 1.0 + EdgeTolerance && along > bestS)
+      {
+        bestS = along;
+        bestK = k;
+        bestT = std::clamp(t, 0.0, 1.0);
+      }
+    }
+    if (bestK < 0 || bestS >= 1.0 || !(bestS > travelled))
+    {
+      return std::nullopt; // stalled, or the target is not where the line goes
+    }
+    travelled = bestS;
+    const int u = c[bestK];
+    const int v = c[(bestK + 1) % 3];
+    from = triangle;
+    if (bestT <= EdgeTolerance || bestT >= 1.0 - EdgeTolerance)
+    {
+      vertex = bestT <= EdgeTolerance ? u : v;
+      edgeA = edgeB = -1;
+      if (vertex == path.points.back().vertex)
+      {
+        return std::nullopt; // no progress
+      }
+      path.points.push_back(SurfacePoint::atVertex(vertex));
+      if (vertex == target)
+      {
+        path.length = length;
+        return path;
+      }
+    }
+    else
+    {
+      vertex = -1;
+      edgeA = u;
+      edgeB = v;
+      path.points.push_back(SurfacePoint::onEdge(u, v, bestT));
+    }
+  }
+  return std::nullopt;
+}
+
 InvalidInputError notConnected(const TriangleMesh& mesh, int source, int target)
 {
   return InvalidInputError("geodesic path on " + meshLabel(mesh) + ": vertices " +
@@ -961,6 +1121,18 @@ SurfacePath GeodesicPathFinder::shortestPathOn(int source,
     SurfacePath path;
     path.points.push_back(SurfacePoint::atVertex(source));
     return path;
+  }
+  if (StraightSegmentShortcut)
+  {
+    if (auto straight = straightPathOnSurface(Mesh, Adjacency, mask, source, target))
+    {
+      stats.straight = true;
+      if (statistics)
+      {
+        *statistics = stats;
+      }
+      return std::move(*straight);
+    }
   }
   // The bound of the patch: the search distance with steps across edges
   // (an upper bound of the geodesic length, tighter than the edge path's).

@@ -57,6 +57,9 @@ struct GeodesicPathStatistics
 {
   std::size_t patchTriangles = 0; ///< of the last (accepted) patch
   int patchGrowths = 0;           ///< times the patch had to grow
+  /// The straight segment between the ends lies on the surface and is the
+  /// path (no patch, no CGAL).
+  bool straight = false;
 };
 
 class THINTISSUEBINDING_EXPORT GeodesicPathFinder
@@ -114,6 +117,12 @@ public:
   /// component: CGAL on the whole surface, for reference.
   void setInitialPatchScale(double scale);
 
+  /// Whether a straight segment between the two vertices that lies on the
+  /// surface is taken as it is (default on). It is the shortest of all
+  /// curves, so the result is the same; off, CGAL computes it on a patch
+  /// (tests compare the two).
+  void setStraightSegmentShortcut(bool on) { StraightSegmentShortcut = on; }
+
 private:
   void checkVertices(int source, int target) const;
   SurfacePath shortestPathOn(int source,
@@ -125,6 +134,7 @@ private:
   const TriangleMesh& Mesh;
   const TriangleMeshAdjacency& Adjacency;
   double InitialPatchScale = 1.1;
+  bool StraightSegmentShortcut = true;
   /// Per triangle: reversed in the patches so that each piece is
   /// consistently oriented.
   std::vector<char> Flipped;

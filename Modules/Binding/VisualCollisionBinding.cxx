@@ -792,7 +792,9 @@ std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
       // (the flood fill reports the region without width).
     }
   };
-  const std::size_t block = std::max<std::size_t>(1, requests.size() / 20);
+  // At most 20 blocks, at least 32 paths each: every block wakes the
+  // thread pool, which costs more than a short path.
+  const std::size_t block = std::max<std::size_t>(32, requests.size() / 20);
   for (std::size_t begin = 0; begin < requests.size(); begin += block)
   {
     const std::size_t end = std::min(requests.size(), begin + block);

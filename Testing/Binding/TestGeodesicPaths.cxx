@@ -342,7 +342,8 @@ TEST(GeodesicPaths, PatchIsNarrowAgainstTheGridDiagonals)
     }
   }
   const TriangleMeshAdjacency adjacency(grid);
-  const GeodesicPathFinder finder(grid, adjacency);
+  GeodesicPathFinder finder(grid, adjacency);
+  finder.setStraightSegmentShortcut(false); // the patches are under test
   const double diagonal = 15.0 * std::sqrt(2.0);
   GeodesicPathStatistics along, against;
   const SurfacePath alongPath = finder.shortestPath(at(10, 10), at(40, 40), &along);
@@ -447,22 +448,33 @@ TEST(GeodesicPaths, LocalPatchEqualsTheWholeSurface)
     const TriangleMesh& mesh = *meshes[m];
     SCOPED_TRACE(m == 0 ? "sheet" : "meniscus");
     const TriangleMeshAdjacency adjacency(mesh);
+    // With the straight-segment shortcut (the default) against CGAL alone.
     const GeodesicPathFinder local(mesh, adjacency);
+    GeodesicPathFinder localPatch(mesh, adjacency);
+    localPatch.setStraightSegmentShortcut(false);
     // lambda = 1: the band along the shortest search path, which must often
     // grow (the meniscus's search paths zigzag).
     GeodesicPathFinder tight(mesh, adjacency);
     tight.setInitialPatchScale(1.0);
+    tight.setStraightSegmentShortcut(false);
     GeodesicPathFinder whole(mesh, adjacency);
     whole.setInitialPatchScale(1e9);
+    whole.setStraightSegmentShortcut(false);
+    int straightPaths = 0;
     int growths = 0;
     for (const auto& [s, t] : samplePairs(mesh, counts[m], spacings[m], 11 + m))
     {
       SCOPED_TRACE("pair " + std::to_string(s) + " " + std::to_string(t));
       GeodesicPathStatistics localStatistics, wholeStatistics;
-      const SurfacePath patchPath = local.shortestPath(s, t, &localStatistics);
+      const SurfacePath patchPath = localPatch.shortestPath(s, t, &localStatistics);
       const SurfacePath wholePath = whole.shortestPath(s, t, &wholeStatistics);
       EXPECT_TRUE(isWellFormed(mesh, adjacency, patchPath, s, t));
       EXPECT_TRUE(isSamePath(patchPath, wholePath, 1e-9));
+      GeodesicPathStatistics shortcutStatistics;
+      const SurfacePath shortcutPath = local.shortestPath(s, t, &shortcutStatistics);
+      EXPECT_TRUE(isWellFormed(mesh, adjacency, shortcutPath, s, t));
+      EXPECT_TRUE(isSamePath(shortcutPath, wholePath, 1e-9));
+      straightPaths += shortcutStatistics.straight ? 1 : 0;
       EXPECT_EQ(wholeStatistics.patchTriangles, mesh.triangleCount());
       EXPECT_EQ(wholeStatistics.patchGrowths, 0);
       EXPECT_LT(localStatistics.patchTriangles, mesh.triangleCount());
@@ -473,6 +485,10 @@ TEST(GeodesicPaths, LocalPatchEqualsTheWholeSurface)
     if (m == 1)
     {
       EXPECT_GT(growths, 0);
+    }
+    else
+    {
+      EXPECT_GT(straightPaths, 0); // the sheet's faces are flat
     }
   }
 }
