@@ -1,5 +1,6 @@
 #include "BindingCache.h"
 
+#include "AtomicFileWriter.h"
 #include "ThinTissueError.h"
 
 #include <cstring>
@@ -310,30 +311,12 @@ void writeBindingCache(const std::string& path,
   header.payloadSize = payload.Bytes.size();
   header.payloadChecksum = content.value();
 
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary = target.string() + ".writing";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out)
+  writeFileAtomically(path,
+    [&](std::ostream& out)
     {
-      throw FileError(path, "cannot be written (directory missing or not writable?)");
-    }
-    out.write(reinterpret_cast<const char*>(&header), sizeof(header));
-    out.write(payload.Bytes.data(), static_cast<std::streamsize>(payload.Bytes.size()));
-    if (!out.flush())
-    {
-      out.close();
-      std::filesystem::remove(temporary);
-      throw FileError(path, "write failed (disk full?)");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, target, error);
-  if (error)
-  {
-    std::filesystem::remove(temporary);
-    throw FileError(path, "cannot replace the file: " + error.message());
-  }
+      out.write(reinterpret_cast<const char*>(&header), sizeof(header));
+      out.write(payload.Bytes.data(), static_cast<std::streamsize>(payload.Bytes.size()));
+    });
 }
 
 std::optional<BindingCacheContents> readBindingCache(const std::string& path,

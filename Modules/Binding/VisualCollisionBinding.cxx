@@ -47,29 +47,12 @@ std::pair<double, int> nearestRayHit(const TriangleMesh& mesh,
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
   {
     const Triangle& tri = mesh.triangles[t];
-    const Vector3& a = mesh.positions[tri[0]];
-    const Vector3 e1 = mesh.positions[tri[1]] - a;
-    const Vector3 e2 = mesh.positions[tri[2]] - a;
-    const Vector3 p = direction.cross(e2);
-    const double det = e1.dot(p);
-    if (std::abs(det) < 1e-300)
-    {
-      continue;
-    }
-    const double inverse = 1.0 / det;
-    const Vector3 s = origin - a;
-    const double u = s.dot(p) * inverse;
-    if (u < -1e-12 || u > 1.0 + 1e-12)
-    {
-      continue;
-    }
-    const Vector3 q = s.cross(e1);
-    const double v = direction.dot(q) * inverse;
-    if (v < -1e-12 || u + v > 1.0 + 1e-12)
-    {
-      continue;
-    }
-    const double distance = e2.dot(q) * inverse;
+    const double distance = rayTriangleHit(origin,
+      direction,
+      mesh.positions[tri[0]],
+      mesh.positions[tri[1]],
+      mesh.positions[tri[2]],
+      1e-12);
     if (distance > 0.0 && distance < best)
     {
       best = distance;

@@ -1,5 +1,6 @@
 #include "MeshImport.h"
 
+#include "AtomicFileWriter.h"
 #include "MeshImportPrivate.h"
 #include "ThinTissueError.h"
 
@@ -112,66 +113,48 @@ TriangleMesh readTriangleMesh(const std::string& path, const MeshImportOptions& 
 
 void writeObj(const TriangleMesh& mesh, const std::string& path)
 {
-  const std::filesystem::path target(path);
-  const std::filesystem::path temporary = target.string() + ".writing";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out)
+  writeFileAtomically(path,
+    [&](std::ostream& out)
     {
-      throw FileError(path, "cannot be opened for writing");
-    }
-    out.precision(17);
-    out << "# written by ThinTissue\n";
-    for (const Vector3& p : mesh.positions)
-    {
-      out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-    }
-    for (const Vector2& uv : mesh.textureCoordinates)
-    {
-      out << "vt " << uv.x() << ' ' << uv.y() << '\n';
-    }
-    for (const Vector3& n : mesh.normals)
-    {
-      out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
-    }
-    const bool texture = mesh.hasTextureCoordinates();
-    const bool normals = mesh.hasNormals();
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-    {
-      out << 'f';
-      for (int k = 0; k < 3; ++k)
+      out.precision(17);
+      out << "# written by ThinTissue\n";
+      for (const Vector3& p : mesh.positions)
       {
-        const int v = mesh.triangles[t][k] + 1;
-        out << ' ' << v;
-        if (texture || normals)
+        out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+      }
+      for (const Vector2& uv : mesh.textureCoordinates)
+      {
+        out << "vt " << uv.x() << ' ' << uv.y() << '\n';
+      }
+      for (const Vector3& n : mesh.normals)
+      {
+        out << "vn " << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
+      }
+      const bool texture = mesh.hasTextureCoordinates();
+      const bool normals = mesh.hasNormals();
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      {
+        out << 'f';
+        for (int k = 0; k < 3; ++k)
         {
-          out << '/';
-          if (texture)
+          const int v = mesh.triangles[t][k] + 1;
+          out << ' ' << v;
+          if (texture || normals)
           {
-            out << mesh.textureCorners[t][k] + 1;
-          }
-          if (normals)
-          {
-            out << '/' << v;
+            out << '/';
+            if (texture)
+            {
+              out << mesh.textureCorners[t][k] + 1;
+            }
+            if (normals)
+            {
+              out << '/' << v;
+            }
           }
         }
+        out << '\n';
       }
-      out << '\n';
-    }
-    if (!out.flush())
-    {
-      out.close();
-      std::filesystem::remove(temporary);
-      throw FileError(path, "write failed (disk full?)");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, target, error);
-  if (error)
-  {
-    std::filesystem::remove(temporary);
-    throw FileError(path, "cannot replace the file: " + error.message());
-  }
+    });
 }
 
 } // namespace thintissue

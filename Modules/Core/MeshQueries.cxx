@@ -47,38 +47,48 @@ double distanceToSurface(const TriangleMesh& mesh, const Vector3& point)
   return std::sqrt(best);
 }
 
+double rayTriangleHit(const Vector3& origin,
+  const Vector3& direction,
+  const Vector3& a,
+  const Vector3& b,
+  const Vector3& c,
+  double tolerance)
+{
+  constexpr double Miss = std::numeric_limits<double>::quiet_NaN();
+  const Vector3 e1 = b - a;
+  const Vector3 e2 = c - a;
+  const Vector3 p = direction.cross(e2);
+  const double determinant = e1.dot(p);
+  if (std::abs(determinant) < 1e-300)
+  {
+    return Miss;
+  }
+  const double inverse = 1.0 / determinant;
+  const Vector3 s = origin - a;
+  const double u = s.dot(p) * inverse;
+  if (u < -tolerance || u > 1.0 + tolerance)
+  {
+    return Miss;
+  }
+  const Vector3 q = s.cross(e1);
+  const double v = direction.dot(q) * inverse;
+  if (v < -tolerance || u + v > 1.0 + tolerance)
+  {
+    return Miss;
+  }
+  return e2.dot(q) * inverse;
+}
+
 std::vector<double> rayHits(const TriangleMesh& mesh,
   const Vector3& origin,
   const Vector3& direction)
 {
-  // Moller-Trumbore with a small tolerance so that hits on shared edges count.
+  // A small tolerance so that hits on shared edges count.
   std::vector<double> hits;
-  const double tolerance = 1e-9;
   for (const auto& t : mesh.triangles)
   {
-    const Vector3& a = mesh.positions[t[0]];
-    const Vector3 e1 = mesh.positions[t[1]] - a;
-    const Vector3 e2 = mesh.positions[t[2]] - a;
-    const Vector3 p = direction.cross(e2);
-    const double determinant = e1.dot(p);
-    if (std::abs(determinant) < 1e-300)
-    {
-      continue;
-    }
-    const double inverse = 1.0 / determinant;
-    const Vector3 s = origin - a;
-    const double u = s.dot(p) * inverse;
-    if (u < -tolerance || u > 1.0 + tolerance)
-    {
-      continue;
-    }
-    const Vector3 q = s.cross(e1);
-    const double v = direction.dot(q) * inverse;
-    if (v < -tolerance || u + v > 1.0 + tolerance)
-    {
-      continue;
-    }
-    const double distance = e2.dot(q) * inverse;
+    const double distance = rayTriangleHit(
+      origin, direction, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], 1e-9);
     if (distance >= 0.0)
     {
       hits.push_back(distance);

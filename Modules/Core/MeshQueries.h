@@ -26,6 +26,17 @@ THINTISSUECORE_EXPORT Vector3 closestPointOnTriangle(const Vector3& point,
 /// meaningful: returns +infinity).
 THINTISSUECORE_EXPORT double distanceToSurface(const TriangleMesh& mesh, const Vector3& point);
 
+/// Parameter t at which the line origin + t * direction meets triangle
+/// (a, b, c), with `tolerance` on the barycentric coordinates so that hits
+/// on shared edges count (Möller-Trumbore); NaN when it misses or runs
+/// parallel to the triangle. t may be negative.
+THINTISSUECORE_EXPORT double rayTriangleHit(const Vector3& origin,
+  const Vector3& direction,
+  const Vector3& a,
+  const Vector3& b,
+  const Vector3& c,
+  double tolerance);
+
 /// Parameters t >= 0 at which origin + t * direction meets the surface
 /// (triangle edges included), sorted increasing.
 THINTISSUECORE_EXPORT std::vector<double> rayHits(const TriangleMesh& mesh,
