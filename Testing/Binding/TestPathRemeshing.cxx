@@ -9,6 +9,8 @@
 #include "ThinTissueError.h"
 #include "TriangleMeshAdjacency.h"
 
+#include "DeterministicRandom.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,25 +31,7 @@ using namespace thintissue;
 namespace
 {
 
-/// Deterministic pseudo-random numbers (64-bit LCG), identical everywhere.
-class Random
-{
-public:
-  explicit Random(std::uint64_t seed)
-    : State(seed)
-  {
-  }
-  std::uint32_t next()
-  {
-    State = State * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<std::uint32_t>(State >> 33);
-  }
-  int below(int n) { return static_cast<int>(next() % static_cast<std::uint32_t>(n)); }
-  double unit() { return next() / 2147483648.0; }
-
-private:
-  std::uint64_t State;
-};
+using thintissue::testing::Random;
 
 int gridIndex(int cellsX, int i, int j)
 {
