@@ -1,0 +1,894 @@
+#include "CollisionMeshGeneration.h"
+
+#include "MeshQueries.h"
+#include "MeshValidation.h"
+#include "ProximityQueries.h"
+#include "SparseHexahedralGrid.h"
+#include "ThinTissueError.h"
+#include "TriangleMeshAdjacency.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace thintissue
+{
+
+namespace
+{
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
+using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel>;
+using DataStructure = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+using Triangulation =
+  CGAL::Constrained_Delaunay_triangulation_2<Kernel, DataStructure, CGAL::Exact_predicates_tag>;
+
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+std::string nameOf(const TriangleMesh& mesh)
+{
+  return "visual mesh '" + mesh.name + "'";
+}
+
+void report(const GenerationProgress& progress, double fraction, const char* stage)
+{
+  if (progress && !progress(fraction, stage))
+  {
+    throw GenerationAbortedError(std::string("collision mesh generation aborted during ") + stage);
+  }
+}
+
+/// The surface seen along its thickness axis: a frame (u, v across, n
+/// along), and a bucket grid of the triangles' projections, so that the
+/// line through a point of the (u, v) plane meets only the triangles of
+/// its bucket.
+class ProjectedSurface
+{
+public:
+  ProjectedSurface(const TriangleMesh& mesh,
+    const Vector3& centre,
+    const Vector3& u,
+    const Vector3& v,
+    const Vector3& n)
+    : Mesh(mesh)
+    , Centre(centre)
+    , U(u)
+    , V(v)
+    , N(n)
+  {
+    Low = Vector2(Infinity, Infinity);
+    Vector2 high(-Infinity, -Infinity);
+    for (const Vector3& x : mesh.positions)
+    {
+      const Vector2 q = project(x);
+      Low = Low.cwiseMin(q);
+      high = high.cwiseMax(q);
+      Depth = std::max(Depth, std::abs((x - centre).dot(n)));
+    }
+    Extent = high - Low;
+    const int cells = std::max(1, static_cast<int>(std::sqrt(mesh.triangleCount() / 4.0)));
+    const double size = std::max(Extent.x(), Extent.y()) / cells;
+    CellSize = size > 0.0 ? size : 1.0;
+    Columns = std::max(1, static_cast<int>(std::ceil(Extent.x() / CellSize)) + 1);
+    Rows = std::max(1, static_cast<int>(std::ceil(Extent.y() / CellSize)) + 1);
+    Buckets.assign(static_cast<std::size_t>(Columns) * Rows, {});
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+      Vector2 a(Infinity, Infinity);
+      Vector2 b(-Infinity, -Infinity);
+      for (int k : mesh.triangles[t])
+      {
+        const Vector2 q = project(mesh.positions[k]);
+        a = a.cwiseMin(q);
+        b = b.cwiseMax(q);
+      }
+      const auto [i0, j0] = cellOf(a);
+      const auto [i1, j1] = cellOf(b);
+      for (int j = j0; j <= j1; ++j)
+      {
+        for (int i = i0; i <= i1; ++i)
+        {
+          Buckets[static_cast<std::size_t>(j) * Columns + i].push_back(static_cast<int>(t));
+        }
+      }
+    }
+  }
+
+  Vector2 project(const Vector3& x) const
+  {
+    const Vector3 d = x - Centre;
+    return Vector2(d.dot(U), d.dot(V));
+  }
+  Vector3 lift(const Vector2& q, double height) const
+  {
+    return Centre + q.x() * U + q.y() * V + height * N;
+  }
+  const Vector2& low() const { return Low; }
+  const Vector2& extent() const { return Extent; }
+
+  /// Heights (along n) of the first and last crossing of the line through
+  /// q; false when the line misses the surface.
+  bool crossing(const Vector2& q, double& bottom, double& top) const
+  {
+    const auto [i, j] = cellOf(q);
+    const Vector3 origin = lift(q, -2.0 * Depth - 1.0);
+    bottom = Infinity;
+    top = -Infinity;
+    for (int t : Buckets[static_cast<std::size_t>(j) * Columns + i])
+    {
+      const Triangle& tri = Mesh.triangles[t];
+      const double s = rayTriangleHit(
+        origin, N, Mesh.positions[tri[0]], Mesh.positions[tri[1]], Mesh.positions[tri[2]], 1e-9);
+      if (std::isfinite(s))
+      {
+        const double height = s - 2.0 * Depth - 1.0;
+        bottom = std::min(bottom, height);
+        top = std::max(top, height);
+      }
+    }
+    return top > bottom;
+  }
+
+private:
+  std::pair<int, int> cellOf(const Vector2& q) const
+  {
+    const int i = static_cast<int>(std::floor((q.x() - Low.x()) / CellSize));
+    const int j = static_cast<int>(std::floor((q.y() - Low.y()) / CellSize));
+    return { std::clamp(i, 0, Columns - 1), std::clamp(j, 0, Rows - 1) };
+  }
+
+  const TriangleMesh& Mesh;
+  Vector3 Centre, U, V, N;
+  Vector2 Low = Vector2::Zero();
+  Vector2 Extent = Vector2::Zero();
+  double Depth = 0.0;
+  double CellSize = 1.0;
+  int Columns = 1;
+  int Rows = 1;
+  std::vector<std::vector<int>> Buckets;
+};
+
+void checkVisual(const TriangleMesh& visual)
+{
+  visual.checkConsistency();
+  if (visual.triangles.empty())
+  {
+    throw InvalidInputError(nameOf(visual) + " has no triangles");
+  }
+  const MeshValidationReport report = validateTriangleMesh(visual);
+  auto fail = [&](const char* what, const ValidationFinding& finding)
+  {
+    throw InvalidInputError(nameOf(visual) + " must be closed, manifold and consistently " +
+                            "oriented: " + std::to_string(finding.count) + " " + what +
+                            ", first at " + finding.firstLocation);
+  };
+  if (report.nonManifoldEdges.count > 0)
+  {
+    fail("non-manifold edges", report.nonManifoldEdges);
+  }
+  if (report.nonManifoldVertices.count > 0)
+  {
+    fail("non-manifold vertices", report.nonManifoldVertices);
+  }
+  if (report.borderEdges.count > 0)
+  {
+    fail("border edges (the surface is open)", report.borderEdges);
+  }
+  if (report.inconsistentlyOrientedEdges.count > 0)
+  {
+    fail("inconsistently oriented edges", report.inconsistentlyOrientedEdges);
+  }
+}
+
+/// Longest loop of silhouette edges (between triangles facing +n and the
+/// others), in (u, v), counter-clockwise.
+std::vector<Vector2> silhouetteOutline(const TriangleMesh& mesh,
+  const ProjectedSurface& surface,
+  const Vector3& n)
+{
+  const TriangleMeshAdjacency adjacency(mesh);
+  std::vector<char> facingUp(mesh.triangleCount());
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    const Triangle& c = mesh.triangles[t];
+    const Vector3 normal = (mesh.positions[c[1]] - mesh.positions[c[0]])
+                             .cross(mesh.positions[c[2]] - mesh.positions[c[0]]);
+    facingUp[t] = normal.dot(n) > 0.0 ? 1 : 0;
+  }
+  std::vector<std::vector<int>> edgesOfVertex(mesh.vertexCount());
+  std::vector<int> silhouette;
+  for (int e = 0; e < static_cast<int>(adjacency.edgeCount()); ++e)
+  {
+    if (adjacency.edgeTriangleCount(e) != 2)
+    {
+      continue;
+    }
+    const int* t = adjacency.edgeTrianglesBegin(e);
+    if (facingUp[t[0]] != facingUp[t[1]])
+    {
+      silhouette.push_back(e);
+      edgesOfVertex[adjacency.edge(e)[0]].push_back(e);
+      edgesOfVertex[adjacency.edge(e)[1]].push_back(e);
+    }
+  }
+  std::vector<char> used(adjacency.edgeCount(), 0);
+  std::vector<Vector2> best;
+  double bestLength = 0.0;
+  for (int first : silhouette)
+  {
+    if (used[first])
+    {
+      continue;
+    }
+    std::vector<int> loop;
+    const int start = adjacency.edge(first)[0];
+    int vertex = adjacency.edge(first)[1];
+    used[first] = 1;
+    loop.push_back(start);
+    bool closed = false;
+    while (true)
+    {
+      loop.push_back(vertex);
+      if (vertex == start)
+      {
+        closed = true;
+        break;
+      }
+      int next = -1;
+      for (int e : edgesOfVertex[vertex])
+      {
+        if (!used[e])
+        {
+          next = e;
+          break;
+        }
+      }
+      if (next < 0)
+      {
+        break;
+      }
+      used[next] = 1;
+      vertex =
+        adjacency.edge(next)[0] == vertex ? adjacency.edge(next)[1] : adjacency.edge(next)[0];
+    }
+    if (!closed || loop.size() < 4)
+    {
+      continue;
+    }
+    loop.pop_back();
+    std::vector<Vector2> points;
+    double length = 0.0;
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      points.push_back(surface.project(mesh.positions[loop[i]]));
+      if (i > 0)
+      {
+        length += (points[i] - points[i - 1]).norm();
+      }
+    }
+    if (length > bestLength)
+    {
+      bestLength = length;
+      // Points that project onto each other (a vertical edge on the
+      // silhouette, the two ends of a wall's corner) are one.
+      best.clear();
+      for (const Vector2& q : points)
+      {
+        if (best.empty() || (q - best.back()).norm() > 1e-6 * length)
+        {
+          best.push_back(q);
+        }
+      }
+      while (best.size() > 1 && (best.front() - best.back()).norm() <= 1e-6 * length)
+      {
+        best.pop_back();
+      }
+    }
+  }
+  double area = 0.0;
+  for (std::size_t i = 0; i < best.size(); ++i)
+  {
+    const Vector2& a = best[i];
+    const Vector2& b = best[(i + 1) % best.size()];
+    area += a.x() * b.y() - a.y() * b.x();
+  }
+  if (area < 0.0)
+  {
+    std::reverse(best.begin(), best.end());
+  }
+  return best;
+}
+
+std::vector<Vector2> resampleEvenly(const std::vector<Vector2>& polygon, int count);
+
+/// `count` points along the closed polygon: its corners (turning by more
+/// than 45 degrees over a sample spacing, two sample spacings apart at
+/// least, at most count / 2, sharpest first) and the rest at equal arc
+/// lengths between them.
+std::vector<Vector2> resample(const std::vector<Vector2>& polygon, int count)
+{
+  const std::size_t n = polygon.size();
+  std::vector<double> at(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    at[i + 1] = at[i] + (polygon[(i + 1) % n] - polygon[i]).norm();
+  }
+  const double total = at.back();
+  // The turn at each point seen over half a sample spacing each way (a
+  // chamfered corner is one corner; a jagged outline has none).
+  const double window = 0.5 * total / count;
+  auto pointAt = [&](double s)
+  {
+    s = std::fmod(std::fmod(s, total) + total, total);
+    const std::size_t i = std::min(
+      static_cast<std::size_t>(std::upper_bound(at.begin(), at.end(), s) - at.begin()) - 1, n - 1);
+    const double span = at[i + 1] - at[i];
+    const double f = span > 0.0 ? (s - at[i]) / span : 0.0;
+    return Vector2((1.0 - f) * polygon[i] + f * polygon[(i + 1) % n]);
+  };
+  std::vector<std::pair<double, std::size_t>> turns;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vector2 a = (polygon[i] - pointAt(at[i] - window)).normalized();
+    const Vector2 b = (pointAt(at[i] + window) - polygon[i]).normalized();
+    const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    if (std::abs(turn) > 45.0 * 3.14159265358979 / 180.0)
+    {
+      turns.emplace_back(-std::abs(turn), i);
+    }
+  }
+  std::sort(turns.begin(), turns.end());
+  std::vector<std::size_t> corners;
+  for (const auto& turn : turns)
+  {
+    const bool apart = std::all_of(corners.begin(),
+      corners.end(),
+      [&](std::size_t c)
+      {
+        const double d = std::abs(at[c] - at[turn.second]);
+        return std::min(d, total - d) > 4.0 * window;
+      });
+    if (apart && static_cast<int>(corners.size()) < count / 2)
+    {
+      corners.push_back(turn.second);
+    }
+  }
+  std::sort(corners.begin(), corners.end());
+  if (corners.empty())
+  {
+    return resampleEvenly(polygon, count);
+  }
+  // The free points shared out between the corners by arc length.
+  const int pieces = static_cast<int>(corners.size());
+  const int free = count - pieces;
+  std::vector<Vector2> result;
+  double carried = 0.0;
+  for (int k = 0; k < pieces; ++k)
+  {
+    const std::size_t from = corners[k];
+    const std::size_t to = corners[(k + 1) % pieces];
+    double length = at[to] - at[from];
+    if (length <= 0.0)
+    {
+      length += total;
+    }
+    const double share = free * length / total + carried;
+    const int inside = static_cast<int>(std::floor(share));
+    carried = share - inside;
+    for (int m = 0; m <= inside; ++m)
+    {
+      double s = at[from] + length * m / (inside + 1);
+      s = s >= total ? s - total : s;
+      const std::size_t segment =
+        static_cast<std::size_t>(std::upper_bound(at.begin(), at.end(), s) - at.begin()) - 1;
+      const std::size_t i = std::min(segment, n - 1);
+      const double span = at[i + 1] - at[i];
+      const double f = span > 0.0 ? (s - at[i]) / span : 0.0;
+      result.push_back((1.0 - f) * polygon[i] + f * polygon[(i + 1) % n]);
+    }
+  }
+  return result;
+}
+
+/// `count` points along the closed polygon at equal arc lengths.
+std::vector<Vector2> resampleEvenly(const std::vector<Vector2>& polygon, int count)
+{
+  std::vector<double> at(polygon.size() + 1, 0.0);
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+  {
+    at[i + 1] = at[i] + (polygon[(i + 1) % polygon.size()] - polygon[i]).norm();
+  }
+  std::vector<Vector2> result;
+  std::size_t segment = 0;
+  for (int k = 0; k < count; ++k)
+  {
+    const double s = at.back() * k / count;
+    while (segment + 1 < polygon.size() && at[segment + 1] < s)
+    {
+      ++segment;
+    }
+    const double span = at[segment + 1] - at[segment];
+    const double f = span > 0.0 ? (s - at[segment]) / span : 0.0;
+    result.push_back((1.0 - f) * polygon[segment] + f * polygon[(segment + 1) % polygon.size()]);
+  }
+  return result;
+}
+
+bool insidePolygon(const std::vector<Vector2>& polygon, const Vector2& q)
+{
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+  {
+    const Vector2& a = polygon[i];
+    const Vector2& b = polygon[j];
+    if ((a.y() > q.y()) != (b.y() > q.y()) &&
+        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
+    {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+double distanceToPolygon(const std::vector<Vector2>& polygon, const Vector2& q)
+{
+  double best = Infinity;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+  {
+    const Vector2& a = polygon[i];
+    const Vector2 d = polygon[(i + 1) % polygon.size()] - a;
+    const double t = std::clamp((q - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+    best = std::min(best, (q - (a + t * d)).norm());
+  }
+  return best;
+}
+
+/// Points of a triangular lattice of spacing h inside the polygon, at least
+/// `margin` from its edges, nearest the polygon last.
+std::vector<Vector2> latticeInside(const std::vector<Vector2>& polygon, double h, double margin)
+{
+  Vector2 low(Infinity, Infinity);
+  Vector2 high(-Infinity, -Infinity);
+  for (const Vector2& p : polygon)
+  {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const double rowHeight = h * std::sqrt(3.0) / 2.0;
+  std::vector<std::pair<double, Vector2>> points;
+  const int rows = static_cast<int>((high.y() - low.y()) / rowHeight) + 1;
+  const int columns = static_cast<int>((high.x() - low.x()) / h) + 1;
+  if (static_cast<double>(rows) * columns > 4e6)
+  {
+    return {};
+  }
+  for (int j = 0; j <= rows; ++j)
+  {
+    for (int i = 0; i <= columns; ++i)
+    {
+      const Vector2 q(low.x() + (i + (j % 2 ? 0.5 : 0.0)) * h, low.y() + j * rowHeight);
+      if (!insidePolygon(polygon, q))
+      {
+        continue;
+      }
+      const double d = distanceToPolygon(polygon, q);
+      if (d >= margin)
+      {
+        points.emplace_back(d, q);
+      }
+    }
+  }
+  std::stable_sort(
+    points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<Vector2> result;
+  for (const auto& p : points)
+  {
+    result.push_back(p.second);
+  }
+  return result;
+}
+
+/// Flips inner edges that join two border vertices (a border vertex with
+/// one triangle: an "ear") where the quadrilateral of its two triangles is
+/// convex and the new edge reaches an inner vertex: every border vertex
+/// then has an inner neighbour, and the binding's positive and negative
+/// paths of such an edge cannot both run along the rim.
+void flipBorderChords(std::vector<Triangle>& triangles,
+  const std::vector<Vector2>& points,
+  int borderCount)
+{
+  auto isBorder = [&](int v) { return v < borderCount; };
+  auto cross = [&](int a, int b, int c)
+  {
+    const Vector2 ab = points[b] - points[a];
+    const Vector2 ac = points[c] - points[a];
+    return ab.x() * ac.y() - ab.y() * ac.x();
+  };
+  for (int pass = 0; pass < 4; ++pass)
+  {
+    bool flipped = false;
+    std::map<std::pair<int, int>, std::vector<int>> edgeTriangles;
+    for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        edgeTriangles[std::minmax(triangles[t][k], triangles[t][(k + 1) % 3])].push_back(t);
+      }
+    }
+    std::vector<char> changed(triangles.size(), 0);
+    for (const auto& [edge, owners] : edgeTriangles)
+    {
+      if (owners.size() != 2 || !isBorder(edge.first) || !isBorder(edge.second) ||
+          changed[owners[0]] || changed[owners[1]])
+      {
+        continue;
+      }
+      // The two opposite vertices; flip to an inner one.
+      int opposite[2];
+      for (int s = 0; s < 2; ++s)
+      {
+        const Triangle& t = triangles[owners[s]];
+        opposite[s] = t[0] != edge.first && t[0] != edge.second
+                        ? t[0]
+                        : (t[1] != edge.first && t[1] != edge.second ? t[1] : t[2]);
+      }
+      if (isBorder(opposite[0]) && isBorder(opposite[1]))
+      {
+        continue;
+      }
+      const int a = edge.first;
+      const int b = edge.second;
+      const int c = opposite[0];
+      const int d = opposite[1];
+      // Convex: c and d on opposite sides of ab, a and b on opposite sides of cd.
+      if (!(cross(a, b, c) * cross(a, b, d) < 0.0 && cross(c, d, a) * cross(c, d, b) < 0.0))
+      {
+        continue;
+      }
+      // Counter-clockwise: (c, d, a) and (d, c, b) or the other way round.
+      const bool left = cross(c, d, a) > 0.0;
+      triangles[owners[0]] = left ? Triangle{ { c, d, a } } : Triangle{ { d, c, a } };
+      triangles[owners[1]] = left ? Triangle{ { d, c, b } } : Triangle{ { c, d, b } };
+      changed[owners[0]] = changed[owners[1]] = 1;
+      flipped = true;
+    }
+    if (!flipped)
+    {
+      break;
+    }
+  }
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
+  const CollisionMeshSettings& settings,
+  const GenerationProgress& progress)
+{
+  report(progress, 0.0, "checking the visual mesh");
+  if (settings.vertexCount < 8)
+  {
+    throw InvalidInputError("collision mesh generation: at least 8 vertices, not " +
+                            std::to_string(settings.vertexCount));
+  }
+  if (!(settings.maximumThicknessRatio > 0.0))
+  {
+    throw InvalidInputError("collision mesh generation: the thickness ratio must be positive");
+  }
+  checkVisual(visual);
+
+  // 1. Thickness axis: least spread of the area (triangle centres, area
+  // weighted).
+  report(progress, 0.1, "finding the thickness axis");
+  double area = 0.0;
+  Vector3 centre = Vector3::Zero();
+  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+  {
+    const Triangle& c = visual.triangles[t];
+    const double a = visual.triangleArea(t);
+    area += a;
+    centre += a * (visual.positions[c[0]] + visual.positions[c[1]] + visual.positions[c[2]]) / 3.0;
+  }
+  centre /= area;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+  {
+    const Triangle& c = visual.triangles[t];
+    const Vector3 d =
+      (visual.positions[c[0]] + visual.positions[c[1]] + visual.positions[c[2]]) / 3.0 - centre;
+    covariance += visual.triangleArea(t) * d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axes(covariance);
+  const Vector3 n = axes.eigenvectors().col(0).normalized();
+  const Vector3 u = axes.eigenvectors().col(2).normalized();
+  const Vector3 v = n.cross(u);
+  const ProjectedSurface surface(visual, centre, u, v, n);
+
+  // 2. Outline, thinness.
+  report(progress, 0.2, "tracing the outline");
+  const std::vector<Vector2> silhouette = silhouetteOutline(visual, surface, n);
+  if (silhouette.size() < 3)
+  {
+    throw InvalidInputError(nameOf(visual) + ": no outline seen along the thickness axis");
+  }
+  GeneratedCollisionMesh result;
+  result.thicknessAxis = n;
+  const double extent = std::max(surface.extent().x(), surface.extent().y());
+  auto halfThickness = [&](const Vector2& q, double& middle)
+  {
+    double bottom = 0.0;
+    double top = 0.0;
+    if (!surface.crossing(q, bottom, top))
+    {
+      return -1.0;
+    }
+    middle = 0.5 * (bottom + top);
+    return 0.5 * (top - bottom);
+  };
+  {
+    // Thickness sampled over the silhouette's lattice.
+    double largest = 0.0;
+    double middle = 0.0;
+    for (const Vector2& q : latticeInside(silhouette, extent / 40.0, 0.0))
+    {
+      largest = std::max(largest, 2.0 * halfThickness(q, middle));
+    }
+    result.largestThickness = largest;
+    result.thicknessRatio = extent > 0.0 ? largest / extent : Infinity;
+    if (!(result.thicknessRatio <= settings.maximumThicknessRatio))
+    {
+      throw InvalidInputError(nameOf(visual) + " is not a thin object: thickness-to-extent ratio " +
+                              std::to_string(result.thicknessRatio) + " (largest thickness " +
+                              std::to_string(largest) + " over extent " + std::to_string(extent) +
+                              "), at most " + std::to_string(settings.maximumThicknessRatio));
+    }
+  }
+
+  // Border: resampled, moved in until the local half thickness reaches it.
+  report(progress, 0.3, "placing the border");
+  const int borderCount =
+    std::clamp(static_cast<int>(std::lround(3.8 * std::sqrt(settings.vertexCount))),
+      4,
+      settings.vertexCount - 3);
+  std::vector<Vector2> border = resample(silhouette, borderCount);
+  if (static_cast<int>(border.size()) != borderCount)
+  {
+    border = resampleEvenly(silhouette, borderCount);
+  }
+  {
+    std::vector<Vector2> moved(border.size());
+    for (std::size_t i = 0; i < border.size(); ++i)
+    {
+      const Vector2& previous = border[(i + border.size() - 1) % border.size()];
+      const Vector2& next = border[(i + 1) % border.size()];
+      const Vector2 along = (next - previous).normalized();
+      const Vector2 inward(-along.y(), along.x());
+      double depth = 1e-3 * extent;
+      double middle = 0.0;
+      for (int iteration = 0; iteration < 12; ++iteration)
+      {
+        const double half = halfThickness(border[i] + depth * inward, middle);
+        depth = half > 0.0 ? std::min(half, 0.25 * extent) : 1.5 * depth;
+      }
+      moved[i] = border[i] + depth * inward;
+    }
+    border = std::move(moved);
+  }
+
+  // 3. Interior lattice with the count that makes vertexCount in all.
+  report(progress, 0.4, "filling the inside");
+  const int interiorCount = settings.vertexCount - borderCount;
+  double perimeter = 0.0;
+  for (std::size_t i = 0; i < border.size(); ++i)
+  {
+    perimeter += (border[(i + 1) % border.size()] - border[i]).norm();
+  }
+  const double borderSpacing = perimeter / borderCount;
+  double small = 1e-3 * extent;
+  double large = extent;
+  std::vector<Vector2> interior;
+  for (int iteration = 0; iteration < 60; ++iteration)
+  {
+    const double h = std::sqrt(small * large);
+    std::vector<Vector2> points = latticeInside(border, h, 0.45 * std::min(h, borderSpacing));
+    if (static_cast<int>(points.size()) >= interiorCount)
+    {
+      small = h;
+      interior = std::move(points);
+    }
+    else
+    {
+      large = h;
+    }
+    if (large / small < 1.0 + 1e-6)
+    {
+      break;
+    }
+  }
+  if (static_cast<int>(interior.size()) < interiorCount)
+  {
+    throw InvalidInputError(nameOf(visual) + ": the outline leaves no room for " +
+                            std::to_string(interiorCount) + " inner collision vertices");
+  }
+  interior.resize(static_cast<std::size_t>(interiorCount)); // the nearest the border go
+
+  // Constrained Delaunay triangulation of border and inside.
+  report(progress, 0.5, "triangulating");
+  std::vector<Vector2> points = border;
+  points.insert(points.end(), interior.begin(), interior.end());
+  Triangulation triangulation;
+  std::vector<Triangulation::Vertex_handle> handles;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    auto handle = triangulation.insert(Kernel::Point_2(points[i].x(), points[i].y()));
+    handle->info() = static_cast<int>(i);
+    handles.push_back(handle);
+  }
+  for (std::size_t i = 0; i < border.size(); ++i)
+  {
+    triangulation.insert_constraint(handles[i], handles[(i + 1) % border.size()]);
+  }
+  TriangleMesh& mesh = result.mesh;
+  mesh.name = visual.name + " collision";
+  for (auto face = triangulation.finite_faces_begin(); face != triangulation.finite_faces_end();
+       ++face)
+  {
+    Triangle t{};
+    Vector2 centroid = Vector2::Zero();
+    for (int k = 0; k < 3; ++k)
+    {
+      t[k] = face->vertex(k)->info();
+      if (t[k] < 0 || t[k] >= static_cast<int>(points.size()))
+      {
+        throw InvalidInputError(nameOf(visual) + ": its outline crosses itself");
+      }
+      centroid += points[t[k]] / 3.0;
+    }
+    if (insidePolygon(border, centroid))
+    {
+      mesh.triangles.push_back(t);
+    }
+  }
+  flipBorderChords(mesh.triangles, points, borderCount);
+  if (triangulation.number_of_vertices() != points.size())
+  {
+    throw InvalidInputError(nameOf(visual) + ": collision vertices coincide (outline too tight)");
+  }
+
+  // 4. Lift to the middle, radius half the thickness.
+  report(progress, 0.6, "lifting to the mid-surface");
+  std::vector<double> radii(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    double middle = 0.0;
+    const double half = halfThickness(points[i], middle);
+    if (!(half > 0.0))
+    {
+      throw InvalidInputError(nameOf(visual) + ": collision vertex " + std::to_string(i) +
+                              " finds no surface above and below it (outline too tight?)");
+    }
+    mesh.positions.push_back(surface.lift(points[i], middle));
+    radii[i] = half;
+  }
+  mesh.pointAttributes.set(settings.radiusArrayName, 1, radii);
+  result.borderVertexCount = borderCount;
+
+  // Two-sided Hausdorff distance to the thick surface.
+  report(progress, 0.7, "measuring the Hausdorff distance");
+  std::vector<Vector3> vertexNormals(mesh.vertexCount(), Vector3::Zero());
+  for (const Triangle& t : mesh.triangles)
+  {
+    const Vector3 normal = (mesh.positions[t[1]] - mesh.positions[t[0]])
+                             .cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+    for (int k : t)
+    {
+      vertexNormals[k] += normal;
+    }
+  }
+  for (Vector3& normal : vertexNormals)
+  {
+    normal.normalize();
+  }
+  auto thickDistance = [&](const Vector3& x)
+  {
+    double best = Infinity;
+    for (const Triangle& t : mesh.triangles)
+    {
+      const TriangleClosestPoint closest = closestPointOnTriangleWithBarycentric(
+        x, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+      const double r = closest.barycentric[0] * radii[t[0]] + closest.barycentric[1] * radii[t[1]] +
+                       closest.barycentric[2] * radii[t[2]];
+      best = std::min(best, (x - closest.point).norm() - r);
+    }
+    return best;
+  };
+  for (const Vector3& x : visual.positions)
+  {
+    result.visualToThick = std::max(result.visualToThick, std::abs(thickDistance(x)));
+  }
+  std::vector<Vector3> samples;
+  for (std::size_t i = 0; i < mesh.vertexCount(); ++i)
+  {
+    samples.push_back(mesh.positions[i] + radii[i] * vertexNormals[i]);
+    samples.push_back(mesh.positions[i] - radii[i] * vertexNormals[i]);
+  }
+  for (const Triangle& t : mesh.triangles)
+  {
+    const Vector3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    const double r = (radii[t[0]] + radii[t[1]] + radii[t[2]]) / 3.0;
+    const Vector3 normal = (mesh.positions[t[1]] - mesh.positions[t[0]])
+                             .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
+                             .normalized();
+    samples.push_back(c + r * normal);
+    samples.push_back(c - r * normal);
+  }
+  for (const Vector3& x : samples)
+  {
+    // Only points on the thick surface's outside count (a sample inside
+    // another part of the thick surface is not on its boundary).
+    if (thickDistance(x) >= -1e-9 * extent)
+    {
+      result.thickToVisual = std::max(result.thickToVisual, distanceToSurface(visual, x));
+    }
+  }
+  result.hausdorffDistance = std::max(result.visualToThick, result.thickToVisual);
+  report(progress, 1.0, "done");
+  return result;
+}
+
+//------------------------------------------------------------------------------
+HexahedralMesh makeSimulationHexahedra(const TriangleMesh& visual, int hexahedronCount)
+{
+  if (hexahedronCount < 1)
+  {
+    throw InvalidInputError(
+      "simulation hexahedra: the count must be positive, not " + std::to_string(hexahedronCount));
+  }
+  const double diagonal = visual.boundingBox().diagonal().norm();
+  auto countFor = [&](double size)
+  {
+    SparseHexahedralGridSettings settings;
+    settings.cellSize = size;
+    return SparseHexahedralGrid::fromSurface(visual, settings);
+  };
+  // The count falls as the cubes grow: bisection on the size, keeping the
+  // size whose count came nearest.
+  double small = diagonal / 400.0;
+  double large = diagonal;
+  double bestSize = large;
+  long bestError = -1;
+  for (int iteration = 0; iteration < 40 && large / small > 1.0 + 1e-4; ++iteration)
+  {
+    const double size = std::sqrt(small * large);
+    const auto count = static_cast<long>(countFor(size).mesh.hexahedronCount());
+    const long error = std::labs(count - hexahedronCount);
+    if (bestError < 0 || error < bestError)
+    {
+      bestError = error;
+      bestSize = size;
+    }
+    if (count == hexahedronCount)
+    {
+      break;
+    }
+    (count > hexahedronCount ? small : large) = size;
+  }
+  HexahedralMesh mesh = countFor(bestSize).mesh;
+  mesh.name = visual.name + " hexahedra";
+  return mesh;
+}
+
+} // namespace thintissue

@@ -1,0 +1,98 @@
+// Automatic collision and simulation meshes for a thin visual mesh: the
+// thesis built its reduced collision meshes by hand in 3ds Max and names
+// their automatic generation as its first future work (7.2).
+//
+// Collision mid-surface ("reduced triangles with radii", 2.4 / 5.1):
+//  1. The thickness axis is the direction of least spread of the surface
+//     (principal axes of its area); the object must be thin along it: the
+//     largest thickness at most maximumThicknessRatio times the extent
+//     across (else "not a thin object", with the measured ratio).
+//  2. The outline is the silhouette of the surface seen along that axis
+//     (edges between triangles facing up and facing down), its longest
+//     loop resampled uniformly; its points move inward until the local half
+//     thickness reaches them, so the border spheres touch the rim.
+//  3. Inside, a triangular lattice of points; the spacing is found by
+//     bisection so that the mesh has the requested vertex count; a
+//     constrained Delaunay triangulation (CGAL) of outline and points gives
+//     the triangles (2V - B - 2 for B border vertices).
+//  4. Each point is lifted to the middle of the surface along the axis (the
+//     first and last crossings of the line), radius half the distance.
+// The two-sided Hausdorff distance between the visual surface and the thick
+// surface of the result (mid-surface swept by its radii) is measured and
+// returned. Limits: one thickness axis (sheets, slabs, the meniscus, the
+// steak; not a sheet rolled into a tube), one outline loop (no holes).
+//
+// Simulation hexahedra: a sparse grid of cubes over the visual surface
+// (SparseHexahedralGrid), the cube size found so that the count is the one
+// requested, or the nearest reachable.
+#ifndef CollisionMeshGeneration_h
+#define CollisionMeshGeneration_h
+
+#include "HexahedralMesh.h"
+#include "ThinTissueBindingModule.h"
+#include "ThinTissueError.h"
+#include "TriangleMesh.h"
+
+#include <functional>
+#include <string>
+
+namespace thintissue
+{
+
+struct CollisionMeshSettings
+{
+  /// Vertices of the collision mid-surface (at least 8).
+  int vertexCount = 85;
+  /// The largest thickness must be at most this fraction of the extent
+  /// across the thickness axis.
+  double maximumThicknessRatio = 0.35;
+  /// Name of the radius array written on the result.
+  std::string radiusArrayName = "Radius";
+};
+
+struct GeneratedCollisionMesh
+{
+  /// The mid-surface, with a per-vertex radius array.
+  TriangleMesh mesh;
+  int borderVertexCount = 0;
+  Vector3 thicknessAxis = Vector3::UnitZ();
+  /// Largest thickness over the extent across the axis.
+  double thicknessRatio = 0.0;
+  double largestThickness = 0.0;
+  /// One-sided distances, largest over samples: visual vertices to the
+  /// thick surface, and points of the thick surface (each vertex's sphere
+  /// along the normal both ways, triangle centres likewise) to the visual
+  /// surface. hausdorffDistance is the larger.
+  double visualToThick = 0.0;
+  double thickToVisual = 0.0;
+  double hausdorffDistance = 0.0;
+};
+
+/// Progress: fraction in [0, 1] and stage; return false to abort
+/// (GenerationAbortedError).
+using GenerationProgress = std::function<bool(double fraction, const char* stage)>;
+
+class THINTISSUEBINDING_EXPORT GenerationAbortedError : public Error
+{
+public:
+  using Error::Error;
+};
+
+/// The collision mid-surface of a closed, manifold, thin visual surface.
+/// Throws InvalidInputError naming the mesh: open, non-manifold or
+/// inconsistently oriented ("must be closed ..."), not thin ("not a thin
+/// object: thickness-to-extent ratio R, at most M"), an outline that cannot
+/// be found, or a vertex count below 8.
+THINTISSUEBINDING_EXPORT GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
+  const CollisionMeshSettings& settings = {},
+  const GenerationProgress& progress = {});
+
+/// Sparse grid hexahedra covering the closed surface, as close to
+/// `hexahedronCount` cells as the cube sizes allow (bisection on the size;
+/// the counts of neighbouring sizes can jump).
+THINTISSUEBINDING_EXPORT HexahedralMesh makeSimulationHexahedra(const TriangleMesh& visual,
+  int hexahedronCount);
+
+} // namespace thintissue
+
+#endif

