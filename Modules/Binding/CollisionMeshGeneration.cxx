@@ -16,7 +16,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <map>
 #include <string>
@@ -314,8 +313,8 @@ std::vector<Vector2> silhouetteOutline(const TriangleMesh& mesh,
 std::vector<Vector2> resampleEvenly(const std::vector<Vector2>& polygon, int count);
 
 /// `count` points along the closed polygon: its corners (turning by more
-/// than 45 degrees over a sample spacing, two sample spacings apart at
-/// least, at most count / 2, sharpest first) and the rest at equal arc
+/// than 40 degrees over a sample spacing each way, two sample spacings
+/// apart at least, at most count / 2, sharpest first) and the rest at equal arc
 /// lengths between them.
 std::vector<Vector2> resample(const std::vector<Vector2>& polygon, int count)
 {
@@ -326,9 +325,9 @@ std::vector<Vector2> resample(const std::vector<Vector2>& polygon, int count)
     at[i + 1] = at[i] + (polygon[(i + 1) % n] - polygon[i]).norm();
   }
   const double total = at.back();
-  // The turn at each point seen over half a sample spacing each way (a
+  // The turn at each point seen over a sample spacing each way (a
   // chamfered corner is one corner; a jagged outline has none).
-  const double window = 0.5 * total / count;
+  const double window = total / count;
   auto pointAt = [&](double s)
   {
     s = std::fmod(std::fmod(s, total) + total, total);
@@ -344,7 +343,7 @@ std::vector<Vector2> resample(const std::vector<Vector2>& polygon, int count)
     const Vector2 a = (polygon[i] - pointAt(at[i] - window)).normalized();
     const Vector2 b = (pointAt(at[i] + window) - polygon[i]).normalized();
     const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
-    if (std::abs(turn) > 45.0 * 3.14159265358979 / 180.0)
+    if (std::abs(turn) > 40.0 * 3.14159265358979 / 180.0)
     {
       turns.emplace_back(-std::abs(turn), i);
     }
@@ -358,7 +357,7 @@ std::vector<Vector2> resample(const std::vector<Vector2>& polygon, int count)
       [&](std::size_t c)
       {
         const double d = std::abs(at[c] - at[turn.second]);
-        return std::min(d, total - d) > 4.0 * window;
+        return std::min(d, total - d) > 2.0 * window;
       });
     if (apart && static_cast<int>(corners.size()) < count / 2)
     {
@@ -375,6 +374,7 @@ std::vector<Vector2> resample(const std::vector<Vector2>& polygon, int count)
   const int free = count - pieces;
   std::vector<Vector2> result;
   double carried = 0.0;
+  int placed = 0;
   for (int k = 0; k < pieces; ++k)
   {
     const std::size_t from = corners[k];
@@ -385,8 +385,10 @@ std::vector<Vector2> resample(const std::vector<Vector2>& polygon, int count)
       length += total;
     }
     const double share = free * length / total + carried;
-    const int inside = static_cast<int>(std::floor(share));
+    // The last piece takes what is left (round-off must not lose a point).
+    const int inside = k + 1 == pieces ? free - placed : static_cast<int>(std::floor(share + 1e-9));
     carried = share - inside;
+    placed += inside;
     for (int m = 0; m <= inside; ++m)
     {
       double s = at[from] + length * m / (inside + 1);
@@ -685,7 +687,13 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
       }
       moved[i] = border[i] + depth * inward;
     }
-    border = std::move(moved);
+    // Moving in gathers points on concave stretches: spread them evenly
+    // again along the moved outline (its corners kept).
+    border = resample(moved, borderCount);
+    if (static_cast<int>(border.size()) != borderCount)
+    {
+      border = resampleEvenly(moved, borderCount);
+    }
   }
 
   // 3. Interior lattice with the count that makes vertexCount in all.

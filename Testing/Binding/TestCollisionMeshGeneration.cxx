@@ -48,8 +48,8 @@ int borderVertices(const TriangleMesh& mesh)
 /// The generated mid-surface: the requested count, a disk (T = 2V - B - 2),
 /// radii positive, vertices inside the visual volume, Hausdorff distance at
 /// most `bound` times the largest thickness; then, with `bind`, bound to
-/// the visual mesh (the steak's and the meniscus's generated meshes do not
-/// bind yet: see the collision-mesh issue).
+/// the visual mesh (not every generated mesh binds yet: see the
+/// collision-mesh issue).
 void checkGenerated(const TriangleMesh& visual, int vertices, double bound, bool bind)
 {
   CollisionMeshSettings settings;
@@ -110,7 +110,9 @@ TEST(CollisionMeshGeneration, SteakAtTheThesisResolutions)
     settings.vertexCount = vertices;
     const GeneratedCollisionMesh generated = makeCollisionMidSurface(steak, settings);
     EXPECT_NEAR(static_cast<double>(generated.mesh.triangleCount()), triangles, 0.2 * triangles);
-    checkGenerated(steak, vertices, 0.5, false);
+    // The 85-vertex mesh binds; the 50-vertex one not yet (a path from an
+    // inner vertex runs along the rim past a neighbouring border vertex).
+    checkGenerated(steak, vertices, 0.5, vertices == 85);
   }
   const HexahedralMesh hexahedra = makeSimulationHexahedra(steak, 76);
   EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 76.0, 76.0 * 0.1);
@@ -128,6 +130,7 @@ TEST(CollisionMeshGeneration, SheetAndMeniscus)
   {
     SCOPED_TRACE("meniscus");
     const MeniscusModel meniscus = makeMeniscus();
+    // Not bound yet: the rim paths do not separate its two sides.
     checkGenerated(meniscus.visual, 105, 0.5, false);
   }
 }
