@@ -368,6 +368,38 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
   const VisualCollisionBindingSettings& settings)
 {
   const std::size_t n = collision.vertexCount();
+  // Outward direction of each border vertex in the collision surface:
+  // across its border edges, away from their triangles.
+  std::vector<Vector3> outward(n, Vector3::Zero());
+  for (const Triangle& t : collision.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = t[k];
+      const int b = t[(k + 1) % 3];
+      const int e = static_cast<int>(std::lower_bound(topology.edges.begin(),
+                                       topology.edges.end(),
+                                       std::array<int, 2>{ { std::min(a, b), std::max(a, b) } }) -
+                                     topology.edges.begin());
+      if (topology.edgeTriangleCount[e] != 1)
+      {
+        continue;
+      }
+      const Vector3 along = collision.positions[b] - collision.positions[a];
+      const Vector3 normal =
+        along.cross(collision.positions[t[(k + 2) % 3]] - collision.positions[a]);
+      Vector3 away = along.cross(normal);
+      if (away.dot(collision.positions[t[(k + 2) % 3]] - collision.positions[a]) > 0.0)
+      {
+        away = -away;
+      }
+      if (away.norm() > 0.0)
+      {
+        outward[a] += away.normalized();
+        outward[b] += away.normalized();
+      }
+    }
+  }
   std::vector<PairingClaim> claims(2 * n);
   std::vector<std::string> errors(2 * n);
   tbb::parallel_for(std::size_t(0),
@@ -387,16 +419,30 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         {
           return; // one visual vertex for both sides
         }
-        // The closest visual vertices (a short list for conflicts) and the
-        // closest points inside the edges around the closest one: on a
-        // rim only a cell thick (the sheets' side walls), every vertex
-        // lies on the upper or the lower edge of the wall, but an edge
-        // point lies half-way, where the rim paths (the equator between
-        // the two sides) belong.
+        // The rim point: where the surface is met going outward across
+        // the border in the collision surface's plane (on a thick rim,
+        // the meniscus's outer wall, the closest point could lie on the
+        // upper or lower face instead), else the vertex itself. Around
+        // it, the closest visual vertices (a short list for conflicts)
+        // and the closest points inside the edges around the closest
+        // one: on a rim only a cell thick (the sheets' side walls),
+        // every vertex lies on the upper or the lower edge of the wall,
+        // but an edge point lies half-way, where the rim paths (the
+        // equator between the two sides) belong.
+        Vector3 target = origin;
+        if (outward[v].norm() > 0.0)
+        {
+          const Vector3 direction = outward[v].normalized();
+          const auto [distance, triangle] = nearestRayHit(visual, origin, direction);
+          if (triangle >= 0 && distance <= reach)
+          {
+            target = origin + distance * direction;
+          }
+        }
         std::vector<std::pair<double, int>> nearest;
         for (std::size_t w = 0; w < visual.vertexCount(); ++w)
         {
-          nearest.emplace_back((visual.positions[w] - origin).norm(), static_cast<int>(w));
+          nearest.emplace_back((visual.positions[w] - target).norm(), static_cast<int>(w));
         }
         const std::size_t keep = std::min<std::size_t>(16, nearest.size());
         std::partial_sort(nearest.begin(), nearest.begin() + keep, nearest.end());
@@ -417,13 +463,13 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
               const int a = std::min(tri[k], tri[(k + 1) % 3]);
               const int b = std::max(tri[k], tri[(k + 1) % 3]);
               const Vector3 d = visual.positions[b] - visual.positions[a];
-              const double along = d.dot(origin - visual.positions[a]) / d.squaredNorm();
+              const double along = d.dot(target - visual.positions[a]) / d.squaredNorm();
               // Near an end the vertex serves (no sliver triangles).
               if (along > EdgePointMargin && along < 1.0 - EdgePointMargin)
               {
                 const Vector3 x = visual.positions[a] + along * d;
                 claim.candidates.emplace_back(
-                  (x - origin).norm(), SurfacePoint::onEdge(a, b, along));
+                  (x - target).norm(), SurfacePoint::onEdge(a, b, along));
               }
             }
           }
@@ -431,7 +477,7 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         std::stable_sort(claim.candidates.begin(),
           claim.candidates.end(),
           [](const auto& x, const auto& y) { return x.first < y.first; });
-        if (claim.candidates.front().first > reach)
+        if ((target - origin).norm() + claim.candidates.front().first > reach)
         {
           errors[c] = nameOf(visual, "visual") + " is not thin at border collision vertex " +
                       std::to_string(v) + ": its closest visual vertex is " +

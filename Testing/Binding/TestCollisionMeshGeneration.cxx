@@ -47,10 +47,8 @@ int borderVertices(const TriangleMesh& mesh)
 
 /// The generated mid-surface: the requested count, a disk (T = 2V - B - 2),
 /// radii positive, vertices inside the visual volume, Hausdorff distance at
-/// most `bound` times the largest thickness; then, with `bind`, bound to
-/// the visual mesh (not every generated mesh binds yet: see the
-/// collision-mesh issue).
-void checkGenerated(const TriangleMesh& visual, int vertices, double bound, bool bind)
+/// most `bound` times the largest thickness; then bound to the visual mesh.
+void checkGenerated(const TriangleMesh& visual, int vertices, double bound)
 {
   CollisionMeshSettings settings;
   settings.vertexCount = vertices;
@@ -72,10 +70,6 @@ void checkGenerated(const TriangleMesh& visual, int vertices, double bound, bool
   EXPECT_LE(generated.hausdorffDistance, bound * generated.largestThickness)
     << "visual to thick " << generated.visualToThick << ", thick to visual "
     << generated.thickToVisual << ", thickness " << generated.largestThickness;
-  if (!bind)
-  {
-    return;
-  }
   const VisualCollisionBinding binding = bindVisualToCollision(visual, mesh);
   EXPECT_EQ(binding.triangleRegion.size(), binding.visual.triangleCount());
   for (const VisualVertexBinding& b : binding.vertices)
@@ -110,9 +104,7 @@ TEST(CollisionMeshGeneration, SteakAtTheThesisResolutions)
     settings.vertexCount = vertices;
     const GeneratedCollisionMesh generated = makeCollisionMidSurface(steak, settings);
     EXPECT_NEAR(static_cast<double>(generated.mesh.triangleCount()), triangles, 0.2 * triangles);
-    // The 85-vertex mesh binds; the 50-vertex one not yet (a path from an
-    // inner vertex runs along the rim past a neighbouring border vertex).
-    checkGenerated(steak, vertices, 0.5, vertices == 85);
+    checkGenerated(steak, vertices, 0.5);
   }
   const HexahedralMesh hexahedra = makeSimulationHexahedra(steak, 76);
   EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 76.0, 76.0 * 0.1);
@@ -123,15 +115,14 @@ TEST(CollisionMeshGeneration, SheetAndMeniscus)
   {
     SCOPED_TRACE("sheet");
     const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(1));
-    checkGenerated(sheet.visual, 65, 0.5, true);
+    checkGenerated(sheet.visual, 65, 0.5);
     const HexahedralMesh hexahedra = makeSimulationHexahedra(sheet.visual, 81);
     EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 81.0, 81.0 * 0.1);
   }
   {
     SCOPED_TRACE("meniscus");
     const MeniscusModel meniscus = makeMeniscus();
-    // Not bound yet: the rim paths do not separate its two sides.
-    checkGenerated(meniscus.visual, 105, 0.5, false);
+    checkGenerated(meniscus.visual, 105, 0.5);
   }
 }
 
