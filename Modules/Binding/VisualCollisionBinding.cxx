@@ -4,6 +4,7 @@
 #include "MeshQueries.h"
 #include "MeshValidation.h"
 #include "PathRemeshing.h"
+#include "TriangleBvh.h"
 #include "TriangleMeshAdjacency.h"
 
 #include <Eigen/SparseCore>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <unordered_map>
 
 namespace thintissue
@@ -37,14 +39,18 @@ std::string nameOf(const TriangleMesh& mesh, const char* role)
 }
 
 /// Nearest intersection of the ray origin + t direction (t > 0) with the
-/// surface: t and triangle (infinity, -1 when it misses). Möller-Trumbore.
+/// surface: t and triangle (infinity, -1 when it misses). Möller-Trumbore
+/// on every triangle, or with `bvh` (of the surface) on the triangles near
+/// the segment up to `reach` only (a miss then means none within reach).
 std::pair<double, int> nearestRayHit(const TriangleMesh& mesh,
   const Vector3& origin,
-  const Vector3& direction)
+  const Vector3& direction,
+  const TriangleBvh* bvh = nullptr,
+  double reach = Infinity)
 {
   double best = Infinity;
   int bestTriangle = -1;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+  auto test = [&](int t)
   {
     const Triangle& tri = mesh.triangles[t];
     const double distance = rayTriangleHit(origin,
@@ -53,10 +59,23 @@ std::pair<double, int> nearestRayHit(const TriangleMesh& mesh,
       mesh.positions[tri[1]],
       mesh.positions[tri[2]],
       1e-12);
-    if (distance > 0.0 && distance < best)
+    if (distance > 0.0 && distance < best && distance <= reach)
     {
       best = distance;
-      bestTriangle = static_cast<int>(t);
+      bestTriangle = t;
+    }
+  };
+  if (bvh != nullptr && std::isfinite(reach))
+  {
+    BoundingBox segment(origin);
+    segment.extend(origin + reach * direction);
+    bvh->forEachOverlap(segment, test);
+  }
+  else
+  {
+    for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
+    {
+      test(t);
     }
   }
   return { best, bestTriangle };
@@ -276,7 +295,39 @@ CollisionTopology analyseCollision(const TriangleMesh& collision)
   return topology;
 }
 
+/// Crossings of the vertical line through p with the surface above and
+/// below p (through the tree: a column of boxes). Both odd means inside;
+/// a line through an edge or vertex may count a crossing twice, so any
+/// other answer is decided by the winding number.
+bool insideByVerticalCrossings(const TriangleMesh& mesh, const TriangleBvh& bvh, const Vector3& p)
+{
+  const BoundingBox bounds = bvh.bounds();
+  BoundingBox column(Vector3(p.x(), p.y(), bounds.min().z() - 1.0));
+  column.extend(Vector3(p.x(), p.y(), bounds.max().z() + 1.0));
+  int above = 0;
+  int below = 0;
+  bool ambiguous = false;
+  bvh.forEachOverlap(column,
+    [&](int t)
+    {
+      const Triangle& tri = mesh.triangles[t];
+      const double s = rayTriangleHit(p,
+        Vector3::UnitZ(),
+        mesh.positions[tri[0]],
+        mesh.positions[tri[1]],
+        mesh.positions[tri[2]],
+        1e-9);
+      if (std::isfinite(s))
+      {
+        ambiguous = ambiguous || s == 0.0;
+        (s > 0.0 ? above : below) += 1;
+      }
+    });
+  return !ambiguous && above % 2 == 1 && below % 2 == 1;
+}
+
 void checkInputs(const TriangleMesh& visual,
+  const TriangleBvh& visualBvh,
   const TriangleMesh& collision,
   const std::vector<double>& radii,
   const VisualCollisionBindingSettings& settings)
@@ -345,7 +396,8 @@ void checkInputs(const TriangleMesh& visual,
     [&](std::size_t v)
     {
       const Vector3& p = collision.positions[v];
-      outside[v] = windingNumber(visual, p) < 0.5 && distanceToSurface(visual, p) > tolerance;
+      outside[v] = !insideByVerticalCrossings(visual, visualBvh, p) &&
+                   windingNumber(visual, p) < 0.5 && distanceToSurface(visual, p) > tolerance;
     });
   const auto first = std::find(outside.begin(), outside.end(), 1);
   if (first != outside.end())
@@ -362,6 +414,7 @@ void checkInputs(const TriangleMesh& visual,
 /// visual edge (inserted as a vertex before the paths are computed).
 std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMesh& visual,
   const TriangleMeshAdjacency& visualAdjacency,
+  const TriangleBvh& visualBvh,
   const TriangleMesh& collision,
   const std::vector<double>& radii,
   const CollisionTopology& topology,
@@ -433,8 +486,9 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         if (outward[v].norm() > 0.0)
         {
           const Vector3 direction = outward[v].normalized();
-          const auto [distance, triangle] = nearestRayHit(visual, origin, direction);
-          if (triangle >= 0 && distance <= reach)
+          const auto [distance, triangle] =
+            nearestRayHit(visual, origin, direction, &visualBvh, reach);
+          if (triangle >= 0)
           {
             target = origin + distance * direction;
           }
@@ -487,7 +541,13 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         return;
       }
       const Vector3 direction = (slot == 0 ? 1.0 : -1.0) * topology.vertexNormals[v];
-      const auto [distance, triangle] = nearestRayHit(visual, origin, direction);
+      // Within reach through the tree; the whole surface only to word the
+      // error when nothing is.
+      auto [distance, triangle] = nearestRayHit(visual, origin, direction, &visualBvh, reach);
+      if (triangle < 0)
+      {
+        std::tie(distance, triangle) = nearestRayHit(visual, origin, direction);
+      }
       if (triangle < 0)
       {
         errors[c] = "collision vertex " + std::to_string(v) + " has no visual vertex on its " +
@@ -998,7 +1058,10 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     collision.pointAttributes.has(settings.radiusArrayName)
       ? collision.pointAttributes.get(settings.radiusArrayName).values
       : std::vector<double>();
-  checkInputs(visual, collision, radii, settings);
+  visual.checkConsistency(); // before the tree, which needs indices in range
+  TriangleBvh visualBvh;
+  visualBvh.build(visual.positions, visual.triangles, {}, 0.0);
+  checkInputs(visual, visualBvh, collision, radii, settings);
   const CollisionTopology topology = analyseCollision(collision);
   const TriangleMeshAdjacency visualAdjacency(visual);
 
@@ -1009,7 +1072,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   binding.collisionTriangles = collision.triangles;
   binding.collisionEdges = topology.edges;
   const std::vector<std::array<SurfacePoint, 2>> pairedPoints =
-    pairCollisionVertices(visual, visualAdjacency, collision, radii, topology, settings);
+    pairCollisionVertices(visual, visualAdjacency, visualBvh, collision, radii, topology, settings);
   // Paired points inside visual edges become vertices first (one-point
   // paths); the visual vertices keep their indices.
   std::vector<SurfacePath> pairedEdgePoints;
