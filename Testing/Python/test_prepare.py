@@ -1,0 +1,66 @@
+"""Automatic collision mid-surface from Python: the thesis's sheet (visual
+model 1) gets a 65-vertex mid-surface with radii that the binding filter
+accepts; not-thin and open surfaces are reported, not crashed on."""
+import unittest
+
+import vtk
+import thintissue
+
+
+class CollisionMidSurfaceTest(unittest.TestCase):
+    def test_sheet_mid_surface_binds(self):
+        sheet = thintissue.vtkThinSheetSource()
+        sheet.SetThesisVisualModel(1)
+        generator = thintissue.vtkCollisionMidSurfaceFilter()
+        generator.SetInputConnection(sheet.GetOutputPort(0))
+        generator.SetVertexCount(65)
+        stages = []
+        generator.AddObserver(
+            "ProgressEvent", lambda caller, event: stages.append(caller.GetProgressText()))
+        generator.Update()
+        self.assertEqual(generator.GetLastErrorMessage(), "")
+        collision = generator.GetOutput()
+        self.assertEqual(collision.GetNumberOfPoints(), 65)
+        radius = collision.GetPointData().GetArray("Radius")
+        self.assertIsNotNone(radius)
+        self.assertGreater(radius.GetRange()[0], 0.0)
+        hausdorff = collision.GetFieldData().GetArray("HausdorffDistance").GetValue(0)
+        self.assertAlmostEqual(hausdorff, generator.GetHausdorffDistance())
+        self.assertGreater(hausdorff, 0.0)
+        self.assertLess(hausdorff, 1.0)  # half the sheet's thickness of 2 mm
+        self.assertIn("triangulating", stages)
+
+        binding = thintissue.vtkVisualCollisionBindingFilter()
+        binding.SetInputConnection(0, sheet.GetOutputPort(0))
+        binding.SetInputConnection(1, generator.GetOutputPort())
+        binding.Update()
+        self.assertEqual(binding.GetLastErrorMessage(), "")
+        self.assertGreater(binding.GetOutputDataObject(0).GetNumberOfPoints(), 840)
+
+    def test_bad_input_is_reported(self):
+        cube = vtk.vtkCubeSource()
+        triangles = vtk.vtkTriangleFilter()
+        triangles.SetInputConnection(cube.GetOutputPort())
+        cleaned = vtk.vtkCleanPolyData()
+        cleaned.SetInputConnection(triangles.GetOutputPort())
+        generator = thintissue.vtkCollisionMidSurfaceFilter()
+        generator.SetInputConnection(cleaned.GetOutputPort())
+        quiet = vtk.vtkObject.GetGlobalWarningDisplay()
+        vtk.vtkObject.GlobalWarningDisplayOff()
+        try:
+            generator.Update()
+            self.assertIn("not a thin object", generator.GetLastErrorMessage())
+            self.assertEqual(generator.GetOutput().GetNumberOfPoints(), 0)
+
+            plane = vtk.vtkPlaneSource()
+            plane_triangles = vtk.vtkTriangleFilter()
+            plane_triangles.SetInputConnection(plane.GetOutputPort())
+            generator.SetInputConnection(plane_triangles.GetOutputPort())
+            generator.Update()
+            self.assertIn("open", generator.GetLastErrorMessage())
+        finally:
+            vtk.vtkObject.SetGlobalWarningDisplay(quiet)
+
+
+if __name__ == "__main__":
+    unittest.main()
