@@ -202,6 +202,7 @@ void checkBinding(const VisualCollisionBinding& b)
     "one region per visual triangle");
   require(
     b.pairedVisualVertices.size() == b.collisionPositions.size(), "one pair per collision vertex");
+  require(b.collisionRadii.size() == b.collisionPositions.size(), "one radius per collision vertex");
   for (const Triangle& t : b.collisionTriangles)
   {
     for (int v : t)
@@ -266,7 +267,8 @@ std::uint64_t bindingInputChecksum(const TriangleMesh& visual,
 void writeBindingCache(const std::string& path,
   const VisualCollisionBinding& binding,
   std::uint64_t inputChecksum,
-  const HexahedralMesh* simulation)
+  const HexahedralMesh* simulation,
+  const std::string& metadata)
 {
   Writer payload;
   payload.mesh(binding.visual);
@@ -293,6 +295,7 @@ void writeBindingCache(const std::string& path,
     payload.pod(p.length);
     payload.vector(p.visualVertices);
   }
+  payload.vector(binding.collisionRadii);
   if (simulation != nullptr)
   {
     payload.string(simulation->name);
@@ -301,6 +304,7 @@ void writeBindingCache(const std::string& path,
     payload.vector(simulation->fixedNodes);
     payload.attributes(simulation->nodeAttributes);
   }
+  payload.string(metadata);
   Checksum content;
   content.add(payload.Bytes.data(), payload.Bytes.size());
   FileHeader header{};
@@ -319,9 +323,12 @@ void writeBindingCache(const std::string& path,
     });
 }
 
-std::optional<BindingCacheContents> readBindingCache(const std::string& path,
-  std::uint64_t expectedInputChecksum,
-  std::string* whyNot)
+namespace
+{
+std::optional<BindingCacheContents> readContents(const std::string& path,
+  const std::uint64_t* expectedInputChecksum,
+  std::string* whyNot,
+  std::uint64_t* inputChecksum)
 {
   auto refuse = [&](const std::string& reason) -> std::optional<BindingCacheContents>
   {
@@ -347,7 +354,11 @@ std::optional<BindingCacheContents> readBindingCache(const std::string& path,
     return refuse("format version " + std::to_string(header.version) + ", expected " +
                   std::to_string(BindingCacheVersion));
   }
-  if (header.inputChecksum != expectedInputChecksum)
+  if (inputChecksum != nullptr)
+  {
+    *inputChecksum = header.inputChecksum;
+  }
+  if (expectedInputChecksum != nullptr && header.inputChecksum != *expectedInputChecksum)
   {
     return refuse("stale: made from other meshes or settings");
   }
@@ -411,6 +422,7 @@ std::optional<BindingCacheContents> readBindingCache(const std::string& path,
       p.length = r.pod<double>();
       p.visualVertices = r.vector<int>();
     }
+    b.collisionRadii = r.vector<double>();
     if (header.hasSimulation != 0)
     {
       HexahedralMesh simulation;
@@ -422,6 +434,7 @@ std::optional<BindingCacheContents> readBindingCache(const std::string& path,
       simulation.checkConsistency();
       contents.simulation = std::move(simulation);
     }
+    contents.metadata = r.string();
     if (!r.atEnd())
     {
       throw Error("trailing bytes");
@@ -433,6 +446,22 @@ std::optional<BindingCacheContents> readBindingCache(const std::string& path,
   {
     return refuse(std::string("damaged: ") + e.what());
   }
+}
+
+} // namespace
+
+std::optional<BindingCacheContents> readBindingCache(const std::string& path,
+  std::uint64_t expectedInputChecksum,
+  std::string* whyNot)
+{
+  return readContents(path, &expectedInputChecksum, whyNot, nullptr);
+}
+
+std::optional<BindingCacheContents> readBindingFile(const std::string& path,
+  std::string* whyNot,
+  std::uint64_t* inputChecksum)
+{
+  return readContents(path, nullptr, whyNot, inputChecksum);
 }
 
 VisualCollisionBinding loadOrBuildBinding(const std::string& cachePath,

@@ -21,8 +21,8 @@
 namespace thintissue
 {
 
-/// Current file format version.
-constexpr std::uint32_t BindingCacheVersion = 1;
+/// Current file format version (2: collision radii and metadata added).
+constexpr std::uint32_t BindingCacheVersion = 2;
 
 /// Checksum (64-bit FNV-1a) of everything the binding depends on: the
 /// visual and collision meshes (positions, triangles, texture corners and
@@ -35,6 +35,8 @@ struct BindingCacheContents
 {
   VisualCollisionBinding binding;
   std::optional<HexahedralMesh> simulation;
+  /// Free text stored with the binding (the tissue bundle's JSON).
+  std::string metadata;
 };
 
 /// Writes the binding (and the hexahedra, if given) with `inputChecksum`.
@@ -42,7 +44,8 @@ struct BindingCacheContents
 THINTISSUEBINDING_EXPORT void writeBindingCache(const std::string& path,
   const VisualCollisionBinding& binding,
   std::uint64_t inputChecksum,
-  const HexahedralMesh* simulation = nullptr);
+  const HexahedralMesh* simulation = nullptr,
+  const std::string& metadata = {});
 
 /// Reads a binding file. Returns nothing, with the reason in `whyNot`, when
 /// the file is missing, of another format version, made from other inputs
@@ -52,6 +55,14 @@ THINTISSUEBINDING_EXPORT std::optional<BindingCacheContents> readBindingCache(
   const std::string& path,
   std::uint64_t expectedInputChecksum,
   std::string* whyNot = nullptr);
+
+/// Reads a binding file whatever inputs it was made from (a tissue bundle
+/// loaded on its own); still refuses another format version or a damaged
+/// file, with the reason in `whyNot`. `inputChecksum` receives the file's.
+THINTISSUEBINDING_EXPORT std::optional<BindingCacheContents> readBindingFile(
+  const std::string& path,
+  std::string* whyNot = nullptr,
+  std::uint64_t* inputChecksum = nullptr);
 
 /// The binding from `cachePath` if the file is current and sound, else a
 /// new one (bindVisualToCollision) written there for next time. `rebuilt`

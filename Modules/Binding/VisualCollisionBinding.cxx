@@ -1070,6 +1070,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   VisualCollisionBinding binding;
   binding.collisionPositions = collision.positions;
   binding.collisionTriangles = collision.triangles;
+  binding.collisionRadii = radii;
   binding.collisionEdges = topology.edges;
   const std::vector<std::array<SurfacePoint, 2>> pairedPoints =
     pairCollisionVertices(visual, visualAdjacency, visualBvh, collision, radii, topology, settings);

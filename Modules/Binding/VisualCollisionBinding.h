@@ -110,6 +110,8 @@ public:
   /// The collision rest positions and triangles the binding was made for.
   std::vector<Vector3> collisionPositions;
   std::vector<Triangle> collisionTriangles;
+  /// The collision mesh's radius per vertex (half the local thickness).
+  std::vector<double> collisionRadii;
   /// Edges of the collision mesh, each (lower, higher) vertex index.
   std::vector<std::array<int, 2>> collisionEdges;
   /// Per collision vertex: its visual vertex on the + and - side (the same

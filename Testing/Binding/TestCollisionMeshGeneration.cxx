@@ -9,10 +9,12 @@
 #include "MeshQueries.h"
 #include "ThinSheetModel.h"
 #include "ThinTissueTestSupport.h"
+#include "TissueBundle.h"
 #include "VisualCollisionBinding.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -155,4 +157,62 @@ TEST(CollisionMeshGeneration, BadInputIsNamed)
   CollisionMeshSettings few;
   few.vertexCount = 3;
   EXPECT_THROW(makeCollisionMidSurface(sheet.visual, few), InvalidInputError);
+}
+
+TEST(TissueBundle, PreparedSheetIsSavedAndLoadedWhole)
+{
+  const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(1));
+  TissuePreparationSettings settings;
+  settings.collision.vertexCount = 65;
+  settings.hexahedronCount = 81;
+  std::vector<double> fractions;
+  const TissueBundle prepared = prepareTissue(sheet.visual,
+    settings,
+    [&](double fraction, const char*)
+    {
+      fractions.push_back(fraction);
+      return true;
+    });
+  ASSERT_GT(fractions.size(), 5u);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_EQ(prepared.collision.vertexCount(), 65u);
+  EXPECT_NEAR(static_cast<double>(prepared.simulation.hexahedronCount()), 81.0, 8.1);
+  EXPECT_EQ(prepared.visualEmbedding.pointCount(), prepared.visual.vertexCount());
+  EXPECT_EQ(prepared.collisionEmbedding.pointCount(), 65u);
+  EXPECT_NE(prepared.metadata.find("\"hausdorffDistance\""), std::string::npos);
+
+  const std::string path = (thintissue::testing::temporaryDirectory() / "sheet.ttbundle").string();
+  writeTissueBundle(path, prepared);
+  const TissueBundle loaded = readTissueBundle(path);
+  EXPECT_TRUE(loaded.visual.positions == prepared.visual.positions);
+  EXPECT_TRUE(loaded.visual.triangles == prepared.visual.triangles);
+  EXPECT_TRUE(loaded.collision.positions == prepared.collision.positions);
+  EXPECT_TRUE(loaded.collision.pointAttributes.get("Radius").values ==
+              prepared.collision.pointAttributes.get("Radius").values);
+  EXPECT_TRUE(loaded.simulation.nodes == prepared.simulation.nodes);
+  EXPECT_EQ(loaded.metadata, prepared.metadata);
+  // The embeddings map the rest nodes back onto the meshes.
+  std::vector<Vector3> mapped;
+  loaded.collisionEmbedding.mapPositions(loaded.simulation.nodes, mapped);
+  for (std::size_t v = 0; v < mapped.size(); ++v)
+  {
+    EXPECT_LT((mapped[v] - loaded.collision.positions[v]).norm(), 1e-9);
+  }
+  // A bundle that gets loaded can be bound to again: same binding.
+  EXPECT_TRUE(loaded.binding.triangleRegion == prepared.binding.triangleRegion);
+
+  // Damaged and missing files are named.
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) / 2);
+  try
+  {
+    readTissueBundle(path);
+    ADD_FAILURE() << "a truncated bundle was read";
+  }
+  catch (const FileError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("damaged"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+  EXPECT_THROW(readTissueBundle(path), FileError);
 }
