@@ -8,6 +8,7 @@
 //
 // Exit codes: 0 done, 1 failed (unreadable mesh, bad input, write error),
 // 2 bad command line.
+#include "ThinTissueAppSupport.h"
 #include "vtkThinTissueMeshReader.h"
 #include "vtkVisualCollisionBindingFilter.h"
 
@@ -28,6 +29,8 @@
 
 namespace
 {
+
+using namespace thintissue::apps;
 
 const char* const Program = "ThinTissueBind";
 
@@ -134,108 +137,10 @@ int parseArguments(int argc, char* argv[], Options& options)
   return 0;
 }
 
-/// Keeps the messages of VTK error and warning events (instead of VTK's
-/// output window) so that they are printed once, plainly.
-class MessageCollector : public vtkCommand
-{
-public:
-  static MessageCollector* New() { return new MessageCollector; }
-  void Execute(vtkObject*, unsigned long event, void* data) override
-  {
-    if (data != nullptr)
-    {
-      (event == vtkCommand::ErrorEvent ? errors : warnings)
-        .emplace_back(static_cast<const char*>(data));
-    }
-  }
-  std::vector<std::string> errors;
-  std::vector<std::string> warnings;
-};
-
-void collectMessages(vtkObject* object, MessageCollector* collector)
-{
-  object->AddObserver(vtkCommand::ErrorEvent, collector);
-  object->AddObserver(vtkCommand::WarningEvent, collector);
-}
-
-/// "[#####     ]  52% computing geodesic paths" on stderr, redrawn in place.
-class ProgressBar : public vtkCommand
-{
-public:
-  static ProgressBar* New() { return new ProgressBar; }
-  void Execute(vtkObject* caller, unsigned long, void* data) override
-  {
-    const double fraction = std::clamp(*static_cast<double*>(data), 0.0, 1.0);
-    const char* text = static_cast<vtkAlgorithm*>(caller)->GetProgressText();
-    const std::string stage = text != nullptr ? text : "";
-    if (stage.empty())
-    {
-      return; // the pipeline's own start, before the first stage
-    }
-    const int percent = static_cast<int>(fraction * 100.0 + 0.5);
-    if (percent == LastPercent && stage == LastStage)
-    {
-      return;
-    }
-    LastPercent = percent;
-    LastStage = stage;
-    constexpr int Width = 30;
-    const int filled = static_cast<int>(fraction * Width + 0.5);
-    std::string line = "[" + std::string(filled, '#') + std::string(Width - filled, ' ') + "] ";
-    char number[8];
-    std::snprintf(number, sizeof(number), "%3d%%", percent);
-    line += number;
-    line += " " + stage;
-    // Pad to blank out a longer previous line.
-    const std::size_t length = line.size();
-    line.resize(std::max(length, LastLength), ' ');
-    LastLength = length;
-    std::cerr << '\r' << line << std::flush;
-    Drawn = true;
-  }
-  /// Ends the bar's line (before other output).
-  void finish()
-  {
-    if (Drawn)
-    {
-      std::cerr << '\n';
-      Drawn = false;
-    }
-  }
-
-private:
-  int LastPercent = -1;
-  std::string LastStage;
-  std::size_t LastLength = 0;
-  bool Drawn = false;
-};
-
 int fail(const std::string& message)
 {
   std::cerr << Program << ": " << message << "\n";
   return 1;
-}
-
-/// Reads a mesh; empty on failure with the reader's message (naming the
-/// file) in `error`.
-vtkSmartPointer<vtkPolyData> readMesh(const std::string& fileName, std::string& error)
-{
-  vtkNew<vtkThinTissueMeshReader> reader;
-  vtkNew<MessageCollector> messages;
-  collectMessages(reader, messages);
-  vtkNew<MessageCollector> pipelineMessages;
-  collectMessages(reader->GetExecutive(), pipelineMessages);
-  reader->SetFileName(fileName.c_str());
-  reader->Update();
-  if (reader->GetLastErrorMessage()[0] != '\0' || !messages->errors.empty())
-  {
-    error = reader->GetLastErrorMessage()[0] != '\0' ? reader->GetLastErrorMessage()
-                                                     : messages->errors.front();
-    return nullptr;
-  }
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  mesh->ShallowCopy(reader->GetOutput());
-  return mesh;
 }
 
 /// Writes `data` to `fileName` + ".writing"; empty string on success.
@@ -339,7 +244,7 @@ int main(int argc, char* argv[])
   collectMessages(binding, messages);
   vtkNew<MessageCollector> pipelineMessages;
   collectMessages(binding->GetExecutive(), pipelineMessages);
-  vtkNew<ProgressBar> progress;
+  vtkNew<ProgressBarObserver> progress;
   binding->AddObserver(vtkCommand::ProgressEvent, progress);
   binding->Update();
   progress->finish();
