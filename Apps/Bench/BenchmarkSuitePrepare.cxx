@@ -1,0 +1,82 @@
+// Suite "prepare": a ready tissue from its visual mesh alone
+// (prepareTissue: collision mid-surface with radii, hexahedra, binding) --
+// the steak of tables 5-1 / 5-2 (the thesis: collision meshes made by hand
+// in 3ds Max, then 5.1 s of pre-processing for the 50-vertex mesh and
+// 10.2 s for the 85-vertex one, table 5-1), the real-size medial meniscus
+// and the thin sheet. The Hausdorff distance of each collision mesh is
+// reported beside its time.
+#include "BenchmarkRegistry.h"
+
+#include "MeniscusModel.h"
+#include "MeshImport.h"
+#include "ThinSheetModel.h"
+#include "TissueBundle.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace
+{
+using namespace thintissue;
+using namespace thintissue::bench;
+
+void prepareAndReport(const std::string& name,
+  const TriangleMesh& visual,
+  int collisionVertices,
+  int hexahedra,
+  std::optional<double> thesisSeconds,
+  int repetitions,
+  BenchmarkReporter& reporter)
+{
+  TissuePreparationSettings settings;
+  settings.collision.vertexCount = collisionVertices;
+  settings.hexahedronCount = hexahedra;
+  TissueBundle bundle;
+  const double seconds =
+    medianSeconds([&] { bundle = prepareTissue(visual, settings); }, repetitions, repetitions > 1);
+  const GeneratedCollisionMesh check = makeCollisionMidSurface(visual, settings.collision);
+  const std::string what = name + " (" + std::to_string(visual.vertexCount()) +
+                           " visual vertices; " + std::to_string(bundle.collision.vertexCount()) +
+                           " collision vertices / " +
+                           std::to_string(bundle.collision.triangleCount()) + " triangles, " +
+                           std::to_string(bundle.simulation.hexahedronCount()) + " hexahedra)";
+  reporter.report(what, "preparation time", seconds, "s", thesisSeconds);
+  reporter.report(what,
+    "Hausdorff distance over largest thickness",
+    check.hausdorffDistance / check.largestThickness,
+    "ratio");
+}
+
+} // namespace
+
+THINTISSUE_BENCHMARK_SUITE(prepareSuite,
+  "prepare",
+  "ready tissue from a visual mesh alone: collision mid-surface, hexahedra and binding (steak, "
+  "meniscus, sheet)")
+(const BenchmarkContext& context, BenchmarkReporter& reporter)
+{
+  const int repetitions = context.quick ? 1 : 5;
+  const std::string steak = context.sharedDataDirectory + "/steak/steak.obj";
+  if (std::filesystem::exists(steak))
+  {
+    const TriangleMesh surface = readTriangleMesh(steak);
+    prepareAndReport("steak, 50 collision vertices", surface, 50, 76, 5.1, repetitions, reporter);
+    prepareAndReport("steak, 85 collision vertices", surface, 85, 76, 10.2, repetitions, reporter);
+  }
+  if (context.quick)
+  {
+    return;
+  }
+  const MeniscusModel meniscus = makeMeniscus();
+  prepareAndReport("medial meniscus (real size, mm)",
+    meniscus.visual,
+    105,
+    42,
+    std::nullopt,
+    repetitions,
+    reporter);
+  const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(2));
+  prepareAndReport(
+    "thin sheet, visual model 2", sheet.visual, 65, 81, std::nullopt, repetitions, reporter);
+}
