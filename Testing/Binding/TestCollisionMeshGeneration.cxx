@@ -2,6 +2,7 @@
 // the steak of tables 5-1 / 5-2 at the thesis's two collision resolutions,
 // the generated sheet and meniscus, each bound (5.2) and checked; the
 // Hausdorff distance bounded; not-thin, open and non-manifold input named.
+#include "BindingInvariants.h"
 #include "CollisionMeshGeneration.h"
 #include "MeniscusModel.h"
 #include "MeshImport.h"
@@ -73,12 +74,7 @@ void checkGenerated(const TriangleMesh& visual, int vertices, double bound)
     << "visual to thick " << generated.visualToThick << ", thick to visual "
     << generated.thickToVisual << ", thickness " << generated.largestThickness;
   const VisualCollisionBinding binding = bindVisualToCollision(visual, mesh);
-  EXPECT_EQ(binding.triangleRegion.size(), binding.visual.triangleCount());
-  for (const VisualVertexBinding& b : binding.vertices)
-  {
-    ASSERT_GE(b.element, 0);
-    EXPECT_NEAR(b.parameters.sum(), 1.0, 1e-12);
-  }
+  thintissue::testing::checkBinding(visual, mesh, binding);
 }
 
 std::string steakPath()

@@ -1,0 +1,214 @@
+// The invariants of a visual-collision binding (thesis 5.2, the binding
+// issue's validation), checked by gtest assertions: every visual vertex bound
+// once with parameters in its collision element, one disk per collision
+// triangle and side covering the surface once, the surface unchanged (closed,
+// oriented, same area and volume, new vertices on it), paths from the right
+// vertices along mesh edges and as short as edge paths over their half.
+#ifndef BindingInvariants_h
+#define BindingInvariants_h
+
+#include "MeshQueries.h"
+#include "MeshValidation.h"
+#include "TriangleMeshAdjacency.h"
+#include "VisualCollisionBinding.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <queue>
+#include <set>
+#include <vector>
+
+namespace thintissue::testing
+{
+
+inline void checkBinding(const TriangleMesh& original,
+  const TriangleMesh& collision,
+  const VisualCollisionBinding& b)
+{
+  const TriangleMesh& mesh = b.visual;
+  ASSERT_EQ(b.vertices.size(), mesh.vertexCount());
+  ASSERT_EQ(b.triangleRegion.size(), mesh.triangleCount());
+
+  // The surface is the original one: closed, oriented, same area and
+  // volume; original vertices kept, new vertices on the original surface.
+  const MeshValidationReport report = validateTriangleMesh(mesh);
+  EXPECT_TRUE(report.isClosedOutwardSingleSurface()) << report.toString();
+  EXPECT_NEAR(mesh.surfaceArea(), original.surfaceArea(), 1e-9 * original.surfaceArea());
+  EXPECT_NEAR(mesh.signedVolume(), original.signedVolume(), 1e-9 * original.signedVolume());
+  const double scale = original.boundingBox().diagonal().norm();
+  for (std::size_t v = 0; v < original.vertexCount(); ++v)
+  {
+    ASSERT_EQ(mesh.positions[v], original.positions[v]);
+  }
+  double farthest = 0.0;
+  for (std::size_t v = original.vertexCount(); v < mesh.vertexCount(); v += 7)
+  {
+    farthest = std::max(farthest, distanceToSurface(original, mesh.positions[v]));
+  }
+  EXPECT_LT(farthest, 1e-12 * scale);
+
+  // Every visual vertex bound once, its parameters a point of its
+  // collision element.
+  std::set<int> pairedVertices;
+  for (std::size_t c = 0; c < b.pairedVisualVertices.size(); ++c)
+  {
+    for (int v : b.pairedVisualVertices[c])
+    {
+      EXPECT_EQ(b.vertices[v].kind, BindingKind::CollisionVertex);
+      EXPECT_EQ(b.vertices[v].element, static_cast<int>(c));
+      pairedVertices.insert(v);
+    }
+    if (b.pairedVisualVertices[c][0] != b.pairedVisualVertices[c][1])
+    {
+      EXPECT_EQ(pairedVertices.count(b.pairedVisualVertices[c][0]), 1u);
+    }
+  }
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+  {
+    const VisualVertexBinding& vb = b.vertices[v];
+    ASSERT_GE(vb.element, 0) << "vertex " << v;
+    EXPECT_GE(vb.parameters.minCoeff(), 0.0) << "vertex " << v;
+    EXPECT_LE(vb.parameters.maxCoeff(), 1.0) << "vertex " << v;
+    EXPECT_NEAR(vb.parameters.sum(), 1.0, 1e-12) << "vertex " << v;
+    if (vb.kind == BindingKind::CollisionTriangle)
+    {
+      // Reconstructed inside its collision triangle (barycentric >= 0).
+      const Vector3 p = b.projectedPoint(v, b.collisionPositions);
+      const Triangle& t = b.collisionTriangles[vb.element];
+      const Vector3 a = b.collisionPositions[t[0]];
+      const Vector3 n = (b.collisionPositions[t[1]] - a).cross(b.collisionPositions[t[2]] - a);
+      EXPECT_LT(std::abs((p - a).dot(n.normalized())), 1e-9 * scale);
+      EXPECT_NE(vb.side, 0);
+    }
+  }
+
+  // Regions: each collision triangle and side one topological disk (V - E
+  // + F = 1, one boundary loop), all together covering every visual
+  // triangle once (triangleRegion has one entry per triangle).
+  std::map<std::pair<int, int>, std::vector<int>> regions;
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    regions[{ b.triangleRegion[t], b.triangleSide[t] }].push_back(static_cast<int>(t));
+  }
+  EXPECT_EQ(regions.size(), 2 * collision.triangleCount());
+  for (const auto& [key, triangles] : regions)
+  {
+    std::set<int> vertices;
+    std::map<std::pair<int, int>, int> edges;
+    for (int t : triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const int u = mesh.triangles[t][k];
+        const int w = mesh.triangles[t][(k + 1) % 3];
+        vertices.insert(u);
+        ++edges[{ std::min(u, w), std::max(u, w) }];
+      }
+    }
+    const long euler = static_cast<long>(vertices.size()) - static_cast<long>(edges.size()) +
+                       static_cast<long>(triangles.size());
+    EXPECT_EQ(euler, 1) << "region of collision triangle " << key.first << " side " << key.second;
+    // One boundary loop: boundary edges form one cycle.
+    std::map<int, std::vector<int>> boundaryNeighbours;
+    for (const auto& [edge, count] : edges)
+    {
+      if (count == 1)
+      {
+        boundaryNeighbours[edge.first].push_back(edge.second);
+        boundaryNeighbours[edge.second].push_back(edge.first);
+      }
+    }
+    std::size_t walked = 0;
+    if (!boundaryNeighbours.empty())
+    {
+      const int start = boundaryNeighbours.begin()->first;
+      int previous = -1;
+      int current = start;
+      do
+      {
+        ASSERT_EQ(boundaryNeighbours[current].size(), 2u) << "boundary vertex " << current;
+        const int next = boundaryNeighbours[current][0] != previous
+                           ? boundaryNeighbours[current][0]
+                           : boundaryNeighbours[current][1];
+        previous = current;
+        current = next;
+        ++walked;
+      } while (current != start && walked <= boundaryNeighbours.size());
+    }
+    EXPECT_EQ(walked, boundaryNeighbours.size());
+  }
+
+  // Paths: from the right vertices, along mesh edges, as short as the edge
+  // path between the same vertices (on the re-meshed surface, where the
+  // paired points inside visual edges are vertices; a side's path against
+  // edge paths over that side's triangles, the half it is kept on).
+  const TriangleMeshAdjacency adjacency(mesh);
+  auto edgePathLength = [&](int source, int target, int side)
+  {
+    std::vector<double> distance(mesh.vertexCount(), 1e300);
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    distance[source] = 0.0;
+    queue.emplace(0.0, source);
+    while (!queue.empty())
+    {
+      const auto [d, v] = queue.top();
+      queue.pop();
+      if (v == target)
+      {
+        return d;
+      }
+      if (d > distance[v])
+      {
+        continue;
+      }
+      for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
+           ++t)
+      {
+        if (side != 0 && b.triangleSide[*t] != side)
+        {
+          continue;
+        }
+        for (int w : mesh.triangles[*t])
+        {
+          const double next = d + (mesh.positions[w] - mesh.positions[v]).norm();
+          if (next < distance[w])
+          {
+            distance[w] = next;
+            queue.emplace(next, w);
+          }
+        }
+      }
+    }
+    return 1e300;
+  };
+  for (const BindingPath& path : b.paths)
+  {
+    const auto& edge = b.collisionEdges[path.collisionEdge];
+    const int slot = path.side < 0 ? 1 : 0;
+    ASSERT_FALSE(path.visualVertices.empty());
+    EXPECT_EQ(path.visualVertices.front(), b.pairedVisualVertices[edge[0]][slot]);
+    EXPECT_EQ(path.visualVertices.back(), b.pairedVisualVertices[edge[1]][slot]);
+    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+    {
+      EXPECT_GE(adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]), 0);
+    }
+    const double edgePath =
+      edgePathLength(path.visualVertices.front(), path.visualVertices.back(), path.side);
+    // The re-meshed surface holds the path's own edges, so the edge path
+    // is at most the path; the path is the shortest up to the points the
+    // re-meshing merged (each moved by at most 1e-3 of its edge).
+    EXPECT_LE(path.length, edgePath * (1.0 + 5e-3));
+    EXPECT_GE(path.length,
+      (mesh.positions[path.visualVertices.front()] - mesh.positions[path.visualVertices.back()])
+          .norm() *
+        (1.0 - 1e-12));
+  }
+}
+
+} // namespace thintissue::testing
+
+#endif
