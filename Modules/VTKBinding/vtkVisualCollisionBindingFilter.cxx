@@ -3,6 +3,7 @@
 #include "BindingCache.h"
 #include "ThinTissueError.h"
 #include "VisualCollisionBinding.h"
+#include "vtkBindingConversion.h"
 #include "vtkThinTissueConversion.h"
 
 #include <vtkCellArray.h>
@@ -28,8 +29,10 @@ vtkStandardNewMacro(vtkVisualCollisionBindingFilter);
 namespace
 {
 
-/// Output 0: the re-meshed visual surface with the binding arrays.
-vtkSmartPointer<vtkPolyData> makeVisualOutput(const thintissue::VisualCollisionBinding& binding)
+} // namespace
+
+vtkSmartPointer<vtkPolyData> thintissue::boundVisualPolyData(
+  const thintissue::VisualCollisionBinding& binding)
 {
   vtkSmartPointer<vtkPolyData> output = thintissue::toPolyData(binding.visual);
   const auto vertexCount = static_cast<vtkIdType>(binding.vertices.size());
@@ -76,6 +79,9 @@ vtkSmartPointer<vtkPolyData> makeVisualOutput(const thintissue::VisualCollisionB
   output->GetCellData()->AddArray(regionSides);
   return output;
 }
+
+namespace
+{
 
 /// Output 1: one polyline per path through the visual vertices it passes.
 vtkSmartPointer<vtkPolyData> makePathsOutput(const thintissue::VisualCollisionBinding& binding)
@@ -207,7 +213,7 @@ int vtkVisualCollisionBindingFilter::RequestData(vtkInformation*,
     {
       binding = thintissue::bindVisualToCollision(visual, collision, settings, progress);
     }
-    visualOutput->ShallowCopy(makeVisualOutput(binding));
+    visualOutput->ShallowCopy(thintissue::boundVisualPolyData(binding));
     pathsOutput->ShallowCopy(makePathsOutput(binding));
   }
   catch (const thintissue::BindingAbortedError& aborted)
