@@ -202,7 +202,8 @@ void checkBinding(const VisualCollisionBinding& b)
     "one region per visual triangle");
   require(
     b.pairedVisualVertices.size() == b.collisionPositions.size(), "one pair per collision vertex");
-  require(b.collisionRadii.size() == b.collisionPositions.size(), "one radius per collision vertex");
+  require(
+    b.collisionRadii.size() == b.collisionPositions.size(), "one radius per collision vertex");
   for (const Triangle& t : b.collisionTriangles)
   {
     for (int v : t)

@@ -166,29 +166,7 @@ void checkVisual(const TriangleMesh& visual)
   {
     throw InvalidInputError(nameOf(visual) + " has no triangles");
   }
-  const MeshValidationReport report = validateTriangleMesh(visual);
-  auto fail = [&](const char* what, const ValidationFinding& finding)
-  {
-    throw InvalidInputError(nameOf(visual) + " must be closed, manifold and consistently " +
-                            "oriented: " + std::to_string(finding.count) + " " + what +
-                            ", first at " + finding.firstLocation);
-  };
-  if (report.nonManifoldEdges.count > 0)
-  {
-    fail("non-manifold edges", report.nonManifoldEdges);
-  }
-  if (report.nonManifoldVertices.count > 0)
-  {
-    fail("non-manifold vertices", report.nonManifoldVertices);
-  }
-  if (report.borderEdges.count > 0)
-  {
-    fail("border edges (the surface is open)", report.borderEdges);
-  }
-  if (report.inconsistentlyOrientedEdges.count > 0)
-  {
-    fail("inconsistently oriented edges", report.inconsistentlyOrientedEdges);
-  }
+  requireClosedOrientedManifold(visual, nameOf(visual));
 }
 
 /// Longest loop of silhouette edges (between triangles facing +n and the

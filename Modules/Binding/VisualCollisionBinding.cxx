@@ -342,33 +342,8 @@ void checkInputs(const TriangleMesh& visual,
   {
     throw InvalidInputError(nameOf(collision, "collision") + " has no triangles");
   }
-  const MeshValidationReport report = validateTriangleMesh(visual);
-  auto fail = [&](const char* what, const ValidationFinding& finding)
-  {
-    throw InvalidInputError(nameOf(visual, "visual") + " must be closed, manifold and " +
-                            "consistently oriented: " + std::to_string(finding.count) + " " + what +
-                            ", first at " + finding.firstLocation);
-  };
-  if (report.nonManifoldEdges.count > 0)
-  {
-    fail("non-manifold edges", report.nonManifoldEdges);
-  }
-  if (report.nonManifoldVertices.count > 0)
-  {
-    fail("non-manifold vertices", report.nonManifoldVertices);
-  }
-  if (report.borderEdges.count > 0)
-  {
-    fail("border edges (the surface is open)", report.borderEdges);
-  }
-  if (report.inconsistentlyOrientedEdges.count > 0)
-  {
-    fail("inconsistently oriented edges", report.inconsistentlyOrientedEdges);
-  }
-  if (report.degenerateTriangles.count > 0)
-  {
-    fail("degenerate triangles", report.degenerateTriangles);
-  }
+  const MeshValidationReport report =
+    requireClosedOrientedManifold(visual, nameOf(visual, "visual"), true);
   if (report.signedVolume <= 0.0)
   {
     throw InvalidInputError(

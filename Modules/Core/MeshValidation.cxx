@@ -1,5 +1,6 @@
 #include "MeshValidation.h"
 
+#include "ThinTissueError.h"
 #include "TriangleMeshAdjacency.h"
 
 #include <algorithm>
@@ -263,6 +264,40 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
   }
   report.connectedComponents = pieces;
   report.signedVolume = mesh.signedVolume();
+  return report;
+}
+
+MeshValidationReport requireClosedOrientedManifold(const TriangleMesh& mesh,
+  const std::string& description,
+  bool rejectDegenerate)
+{
+  const MeshValidationReport report = validateTriangleMesh(mesh);
+  auto fail = [&](const char* what, const ValidationFinding& finding)
+  {
+    throw InvalidInputError(description + " must be closed, manifold and consistently " +
+                            "oriented: " + std::to_string(finding.count) + " " + what +
+                            ", first at " + finding.firstLocation);
+  };
+  if (report.nonManifoldEdges.count > 0)
+  {
+    fail("non-manifold edges", report.nonManifoldEdges);
+  }
+  if (report.nonManifoldVertices.count > 0)
+  {
+    fail("non-manifold vertices", report.nonManifoldVertices);
+  }
+  if (report.borderEdges.count > 0)
+  {
+    fail("border edges (the surface is open)", report.borderEdges);
+  }
+  if (report.inconsistentlyOrientedEdges.count > 0)
+  {
+    fail("inconsistently oriented edges", report.inconsistentlyOrientedEdges);
+  }
+  if (rejectDegenerate && report.degenerateTriangles.count > 0)
+  {
+    fail("degenerate triangles", report.degenerateTriangles);
+  }
   return report;
 }
 

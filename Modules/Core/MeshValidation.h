@@ -59,6 +59,15 @@ struct THINTISSUECORE_EXPORT MeshValidationReport
 THINTISSUECORE_EXPORT MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh,
   double degenerateAreaTolerance = 1e-14);
 
+/// Throws InvalidInputError "<description> must be closed, manifold and
+/// consistently oriented: N <problem>, first at <where>" for the first of:
+/// non-manifold edges, non-manifold vertices, border edges, inconsistently
+/// oriented edges (and, with `rejectDegenerate`, degenerate triangles).
+/// Returns the report for further checks. Indices must be in range.
+THINTISSUECORE_EXPORT MeshValidationReport requireClosedOrientedManifold(const TriangleMesh& mesh,
+  const std::string& description,
+  bool rejectDegenerate = false);
+
 } // namespace thintissue
 
 #endif

@@ -6,7 +6,7 @@
 #include "ThinSheetModel.h"
 #include "ThinTissueError.h"
 
-#include "DeterministicRandom.h"
+#include "BindingTestHelpers.h"
 
 #include <gtest/gtest.h>
 
@@ -24,6 +24,7 @@ namespace
 {
 
 using thintissue::testing::Random;
+using thintissue::testing::vertexAt;
 
 /// A flat (z = 0) grid of cellsX x cellsY cells of size `spacing` with
 /// irregular diagonals. With `jitter` > 0 the inner vertices move in the
@@ -97,19 +98,6 @@ TriangleMesh slitPlane(int cellsX, int cellsY, int slitX, int slitTop, std::uint
     }
   }
   return mesh;
-}
-
-int vertexAt(const TriangleMesh& mesh, const Vector3& point)
-{
-  int best = 0;
-  for (int v = 1; v < static_cast<int>(mesh.vertexCount()); ++v)
-  {
-    if ((mesh.positions[v] - point).squaredNorm() < (mesh.positions[best] - point).squaredNorm())
-    {
-      best = v;
-    }
-  }
-  return best;
 }
 
 /// The mesh triangles containing a surface point.

@@ -9,7 +9,7 @@
 #include "ThinTissueError.h"
 #include "TriangleMeshAdjacency.h"
 
-#include "DeterministicRandom.h"
+#include "BindingTestHelpers.h"
 
 #include <gtest/gtest.h>
 
@@ -32,6 +32,7 @@ namespace
 {
 
 using thintissue::testing::Random;
+using thintissue::testing::vertexAt;
 
 int gridIndex(int cellsX, int i, int j)
 {
@@ -235,19 +236,6 @@ std::vector<int> trianglesWhere(const TriangleMesh& mesh, Predicate inside)
     }
   }
   return subset;
-}
-
-int vertexAt(const TriangleMesh& mesh, const Vector3& point)
-{
-  int best = 0;
-  for (int v = 1; v < static_cast<int>(mesh.vertexCount()); ++v)
-  {
-    if ((mesh.positions[v] - point).squaredNorm() < (mesh.positions[best] - point).squaredNorm())
-    {
-      best = v;
-    }
-  }
-  return best;
 }
 
 /// Barycentric coordinates of p in triangle (a, b, c) after projection on
