@@ -3,7 +3,7 @@
 // jittered meshes and sampled paths are reproducible) and the vertex
 // nearest a point.
 #ifndef BindingTestHelpers_h
-#define BindingTestHelpers .h
+#define BindingTestHelpers_h
 
 #include "TriangleMesh.h"
 
