@@ -150,6 +150,11 @@ TEST(CollisionMeshGeneration, BadInputIsNamed)
   open.triangles.pop_back();
   open.textureCorners.pop_back();
   expectError(open, "border edges (the surface is open)");
+  TriangleMesh nonManifold = sheet.visual;
+  const Triangle t0 = nonManifold.triangles[0];
+  nonManifold.triangles.push_back({ t0[1], t0[0], t0[2] == 0 ? 1 : 0 });
+  nonManifold.textureCorners.push_back(nonManifold.textureCorners[0]);
+  expectError(nonManifold, "non-manifold");
   CollisionMeshSettings few;
   few.vertexCount = 3;
   EXPECT_THROW(makeCollisionMidSurface(sheet.visual, few), InvalidInputError);
