@@ -148,6 +148,10 @@ public:
 private:
   void take(void* out, std::size_t size)
   {
+    if (size == 0)
+    {
+      return; // an empty vector or string: `out` may be null
+    }
     if (size > Bytes.size() - Position)
     {
       throw Error("the file ends early");
