@@ -3,7 +3,7 @@
 // with radii, simulation hexahedra and the visual-collision binding (5.2),
 // saved as one bundle that the simulator and the VTK filters load.
 //
-//   ThinTissuePrepare VISUAL_MESH -o BUNDLE [--collision-vertices N]
+//   ThinTissuePrepare VISUAL_MESH -o BUNDLE [--collision-vertices N | --collision-triangles N]
 //                     [--hexahedra N] [--collision-output FILE.vtp]
 //                     [--hexahedra-output FILE.vtu] [--max-thickness-ratio R]
 //
@@ -35,6 +35,7 @@ struct Options
   std::string collisionOutput;
   std::string hexahedraOutput;
   int collisionVertices = 85;
+  int collisionTriangles = 0;
   int hexahedra = 76;
   double maximumThicknessRatio = 0.35;
 };
@@ -53,6 +54,7 @@ void printUsage(std::ostream& out)
          "                               VTP, VTK, VTU)\n"
          "  -o, --output BUNDLE          the bundle to write\n"
          "  --collision-vertices N       vertices of the collision mesh (default 85)\n"
+         "  --collision-triangles N      or the triangles of the collision mesh (at least N)\n"
          "  --hexahedra N                hexahedra of the simulation mesh (default 76)\n"
          "  --collision-output FILE.vtp  also write the collision mesh (with Radius)\n"
          "  --hexahedra-output FILE.vtu  also write the hexahedra\n"
@@ -86,6 +88,7 @@ int parseArguments(int argc, char* argv[], Options& options)
     }
     const bool takesValue = argument == "-o" || argument == "--output" ||
                             argument == "--collision-vertices" || argument == "--hexahedra" ||
+                            argument == "--collision-triangles" ||
                             argument == "--collision-output" || argument == "--hexahedra-output" ||
                             argument == "--max-thickness-ratio";
     if (takesValue && i + 1 >= argc)
@@ -97,9 +100,12 @@ int parseArguments(int argc, char* argv[], Options& options)
     {
       options.bundle = argv[++i];
     }
-    else if (argument == "--collision-vertices" || argument == "--hexahedra")
+    else if (argument == "--collision-vertices" || argument == "--hexahedra" ||
+             argument == "--collision-triangles")
     {
-      int& target = argument == "--hexahedra" ? options.hexahedra : options.collisionVertices;
+      int& target = argument == "--hexahedra"             ? options.hexahedra
+                    : argument == "--collision-triangles" ? options.collisionTriangles
+                                                          : options.collisionVertices;
       if (!parsePositive(argv[++i], target))
       {
         std::cerr << Program << ": " << argument << " expects a positive whole number, not '"
@@ -173,6 +179,7 @@ int main(int argc, char* argv[])
     visual.name = options.visual;
     thintissue::TissuePreparationSettings settings;
     settings.collision.vertexCount = options.collisionVertices;
+    settings.collision.triangleCount = options.collisionTriangles;
     settings.collision.maximumThicknessRatio = options.maximumThicknessRatio;
     settings.hexahedronCount = options.hexahedra;
     const thintissue::TissueBundle bundle = thintissue::prepareTissue(visual,

@@ -43,6 +43,10 @@ struct CollisionMeshSettings
 {
   /// Vertices of the collision mid-surface (at least 8).
   int vertexCount = 85;
+  /// When positive, the triangle count asked for instead: the fewest
+  /// vertices whose mesh has at least this many triangles (a disk with B
+  /// border vertices has 2V - B - 2).
+  int triangleCount = 0;
   /// The largest thickness must be at most this fraction of the extent
   /// across the thickness axis.
   double maximumThicknessRatio = 0.35;

@@ -104,6 +104,12 @@ TEST(CollisionMeshGeneration, SteakAtTheThesisResolutions)
     EXPECT_NEAR(static_cast<double>(generated.mesh.triangleCount()), triangles, 0.2 * triangles);
     checkGenerated(steak, vertices, 0.5);
   }
+  // Asked by triangle count: the thesis's 137.
+  CollisionMeshSettings byTriangles;
+  byTriangles.triangleCount = 137;
+  const GeneratedCollisionMesh fromTriangles = makeCollisionMidSurface(steak, byTriangles);
+  EXPECT_GE(fromTriangles.mesh.triangleCount(), 137u);
+  EXPECT_LE(fromTriangles.mesh.triangleCount(), 139u);
   const HexahedralMesh hexahedra = makeSimulationHexahedra(steak, 76);
   EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 76.0, 76.0 * 0.1);
 }
@@ -114,6 +120,11 @@ TEST(CollisionMeshGeneration, SheetAndMeniscus)
     SCOPED_TRACE("sheet");
     const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(1));
     checkGenerated(sheet.visual, 65, 0.5);
+    CollisionMeshSettings byTriangles;
+    byTriangles.triangleCount = 104; // the thesis's collision model 1
+    const GeneratedCollisionMesh fromTriangles = makeCollisionMidSurface(sheet.visual, byTriangles);
+    EXPECT_GE(fromTriangles.mesh.triangleCount(), 104u);
+    EXPECT_LE(fromTriangles.mesh.triangleCount(), 106u);
     const HexahedralMesh hexahedra = makeSimulationHexahedra(sheet.visual, 81);
     EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 81.0, 81.0 * 0.1);
   }
