@@ -298,13 +298,9 @@ void CorotationalHexFem::removeHexahedron(std::size_t h)
   TopologyChanged = true;
 }
 
-void CorotationalHexFem::replaceHexahedronNodes(std::size_t h, const Hexahedron& nodes)
+void CorotationalHexFem::checkSameRestNodes(std::size_t h, const Hexahedron& nodes) const
 {
-  if (h >= Elements.size())
-  {
-    throw InvalidInputError("co-rotational FEM: no hexahedron " + std::to_string(h));
-  }
-  Element& element = Elements[h];
+  const Element& element = Elements[h];
   for (int a = 0; a < 8; ++a)
   {
     checkNode(static_cast<std::size_t>(std::max(nodes[a], 0)), "replacing a corner");
@@ -316,6 +312,35 @@ void CorotationalHexFem::replaceHexahedronNodes(std::size_t h, const Hexahedron&
         ": a replacement node must have the rest position of the node it replaces");
     }
   }
+}
+
+std::size_t CorotationalHexFem::duplicateHexahedron(std::size_t h, const Hexahedron& nodes)
+{
+  if (h >= Elements.size())
+  {
+    throw InvalidInputError("co-rotational FEM: no hexahedron " + std::to_string(h));
+  }
+  checkSameRestNodes(h, nodes);
+  Element copy = Elements[h];
+  copy.nodes = nodes;
+  copy.active = true;
+  for (int a = 0; a < 8; ++a)
+  {
+    NodeMasses[nodes[a]] += copy.material.density * copy.rest.shapeIntegrals[a];
+  }
+  Elements.push_back(std::move(copy));
+  TopologyChanged = true;
+  return Elements.size() - 1;
+}
+
+void CorotationalHexFem::replaceHexahedronNodes(std::size_t h, const Hexahedron& nodes)
+{
+  if (h >= Elements.size())
+  {
+    throw InvalidInputError("co-rotational FEM: no hexahedron " + std::to_string(h));
+  }
+  checkSameRestNodes(h, nodes);
+  Element& element = Elements[h];
   if (element.active)
   {
     for (int a = 0; a < 8; ++a)

@@ -224,6 +224,11 @@ public:
   std::size_t addNode(const Vector3& rest, const Vector3& position, const Vector3& velocity);
   /// A new hexahedron (VTK order); returns its index.
   std::size_t addHexahedron(const Hexahedron& nodes, const LinearMaterial& material);
+  /// A copy of hexahedron h on other nodes with the same rest positions
+  /// (hexahedron duplication of a cut, 5.3.1): its rest state and stiffness
+  /// are copied, not recomputed, so a copy is never ill-shaped. Returns its
+  /// index. Throws InvalidInputError like replaceHexahedronNodes.
+  std::size_t duplicateHexahedron(std::size_t h, const Hexahedron& nodes);
   /// Removes hexahedron h from the simulation (indices stay valid).
   void removeHexahedron(std::size_t h);
   bool isActive(std::size_t h) const { return Elements[h].active; }
@@ -244,6 +249,8 @@ private:
   struct LinearSystem;
 
   void checkNode(std::size_t node, const char* what) const;
+  /// Throws unless `nodes` have the rest positions of hexahedron h's nodes.
+  void checkSameRestNodes(std::size_t h, const Hexahedron& nodes) const;
   Element makeElement(const Hexahedron& nodes,
     const LinearMaterial& material,
     std::size_t index) const;

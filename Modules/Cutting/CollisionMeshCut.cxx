@@ -1,0 +1,677 @@
+#include "CollisionMeshCut.h"
+
+#include "ThinTissueError.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace thintissue
+{
+
+struct CuttableCollisionMesh::Crossing
+{
+  int a = -1; ///< lower vertex of the edge
+  int b = -1;
+  double t = 0.0; ///< from a to b
+};
+
+/// A triangle the cut reaches: its corners and the cut points on its
+/// edges as one counter-clockwise polygon, and which of them the cut joins.
+struct CuttableCollisionMesh::TriangleFeatures
+{
+  int triangle = -1;
+  std::vector<int> polygon;         ///< vertex ids
+  std::vector<Vector3> barycentric; ///< of each polygon vertex in the triangle
+  std::vector<int> edgeOf;          ///< triangle edge k of an edge point, -1 for a corner
+  std::vector<int> cornerOf;        ///< corner k of a corner, -1 for an edge point
+  std::vector<int> features;        ///< polygon positions on the cut
+  int cutFrom = -1;                 ///< polygon positions joined by the cut, or -1
+  int cutTo = -1;
+};
+
+namespace
+{
+
+struct UnionFind
+{
+  std::vector<int> parent;
+  explicit UnionFind(std::size_t n)
+    : parent(n)
+  {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
+  int find(int i)
+  {
+    while (parent[i] != i)
+    {
+      parent[i] = parent[parent[i]];
+      i = parent[i];
+    }
+    return i;
+  }
+  void unite(int i, int j)
+  {
+    i = find(i);
+    j = find(j);
+    if (i != j)
+    {
+      parent[std::max(i, j)] = std::min(i, j);
+    }
+  }
+};
+
+/// Where segment p-q crosses triangle (a, b, c): parameter t in [0, 1] from
+/// p, or a negative value. Segments in the triangle's plane do not cross.
+double segmentCrossing(const Vector3& p,
+  const Vector3& q,
+  const Vector3& a,
+  const Vector3& b,
+  const Vector3& c)
+{
+  const Vector3 normal = (b - a).cross(c - a);
+  const double area2 = normal.norm();
+  if (area2 <= 0.0)
+  {
+    return -1.0;
+  }
+  const Vector3 n = normal / area2;
+  const double sp = (p - a).dot(n);
+  const double sq = (q - a).dot(n);
+  const double eps = 1e-10 * ((q - p).norm() + std::sqrt(area2));
+  const bool pOn = std::abs(sp) <= eps;
+  const bool qOn = std::abs(sq) <= eps;
+  if ((pOn && qOn) || (!pOn && !qOn && (sp > 0.0) == (sq > 0.0)))
+  {
+    return -1.0;
+  }
+  const double t = pOn ? 0.0 : (qOn ? 1.0 : sp / (sp - sq));
+  const Vector3 x = p + t * (q - p);
+  // Barycentric test with a small tolerance: crossings on a blade edge
+  // shared by two blade triangles count.
+  const double tolerance = -1e-9;
+  const double u = (c - b).cross(x - b).dot(n) / area2;
+  const double v = (a - c).cross(x - c).dot(n) / area2;
+  const double w = 1.0 - u - v;
+  return (u >= tolerance && v >= tolerance && w >= tolerance) ? t : -1.0;
+}
+
+/// Triangulates a counter-clockwise polygon (convex, possibly with
+/// collinear points) by clipping the best-shaped ear each time; appends
+/// triangles of polygon positions.
+void clipEars(const std::vector<Vector2>& points,
+  std::vector<int> polygon,
+  std::vector<std::array<int, 3>>& out)
+{
+  auto cross = [&points](int i, int j, int k)
+  {
+    const Vector2 u = points[j] - points[i];
+    const Vector2 v = points[k] - points[i];
+    return u.x() * v.y() - u.y() * v.x();
+  };
+  double scale = 0.0;
+  for (int i : polygon)
+  {
+    scale = std::max(scale, (points[i] - points[polygon[0]]).squaredNorm());
+  }
+  const double minimumArea = 1e-12 * scale;
+  while (polygon.size() > 3)
+  {
+    const int n = static_cast<int>(polygon.size());
+    int best = -1;
+    double bestQuality = -1.0;
+    for (int e = 0; e < n; ++e)
+    {
+      const int i = polygon[(e + n - 1) % n], j = polygon[e], k = polygon[(e + 1) % n];
+      const double area = cross(i, j, k);
+      if (area <= minimumArea)
+      {
+        continue;
+      }
+      bool empty = true;
+      for (int m : polygon)
+      {
+        if (m != i && m != j && m != k && cross(i, j, m) >= -minimumArea &&
+            cross(j, k, m) >= -minimumArea && cross(k, i, m) >= -minimumArea)
+        {
+          empty = false;
+          break;
+        }
+      }
+      if (!empty)
+      {
+        continue;
+      }
+      const double longest = std::max({ (points[j] - points[i]).squaredNorm(),
+        (points[k] - points[j]).squaredNorm(),
+        (points[i] - points[k]).squaredNorm() });
+      const double quality = area / longest;
+      if (quality > bestQuality)
+      {
+        bestQuality = quality;
+        best = e;
+      }
+    }
+    if (best < 0)
+    {
+      best = 0; // cannot happen for a convex polygon; keep going
+    }
+    out.push_back({ polygon[(best + n - 1) % n], polygon[best], polygon[(best + 1) % n] });
+    polygon.erase(polygon.begin() + best);
+  }
+  out.push_back({ polygon[0], polygon[1], polygon[2] });
+}
+
+} // namespace
+
+std::uint64_t CuttableCollisionMesh::edgeKey(int a, int b)
+{
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+CuttableCollisionMesh::CuttableCollisionMesh(std::string name,
+  std::vector<Vector3> restPositions,
+  std::vector<Triangle> triangles,
+  std::vector<double> radii)
+  : Name(std::move(name))
+  , RestPositions(std::move(restPositions))
+  , Triangles(std::move(triangles))
+  , Radii(std::move(radii))
+{
+  const int n = static_cast<int>(RestPositions.size());
+  if (Radii.size() != RestPositions.size())
+  {
+    throw InvalidInputError("collision mesh '" + Name + "': " + std::to_string(Radii.size()) +
+                            " radii for " + std::to_string(n) + " vertices");
+  }
+  for (int v = 0; v < n; ++v)
+  {
+    if (!RestPositions[v].allFinite() || !std::isfinite(Radii[v]))
+    {
+      throw InvalidInputError(
+        "collision mesh '" + Name + "': vertex " + std::to_string(v) + " is not finite");
+    }
+  }
+  VertexTriangles.assign(RestPositions.size(), {});
+  std::unordered_map<std::uint64_t, int> directed;
+  for (std::size_t t = 0; t < Triangles.size(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = Triangles[t][k], b = Triangles[t][(k + 1) % 3];
+      if (a < 0 || a >= n || a == b)
+      {
+        throw InvalidInputError("collision mesh '" + Name + "': triangle " + std::to_string(t) +
+                                " has a bad corner " + std::to_string(a));
+      }
+      const auto key = (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b);
+      if (!directed.emplace(key, static_cast<int>(t)).second)
+      {
+        throw InvalidInputError(
+          "collision mesh '" + Name + "': edge (" + std::to_string(a) + ", " + std::to_string(b) +
+          ") is shared by triangles of opposite orientation or by more than two triangles");
+      }
+    }
+    addToAdjacency(static_cast<int>(t));
+  }
+}
+
+std::array<int, 2> CuttableCollisionMesh::trianglesOfEdge(int a, int b) const
+{
+  const auto it = EdgeTriangles.find(edgeKey(a, b));
+  return it == EdgeTriangles.end() ? std::array<int, 2>{ { -1, -1 } } : it->second;
+}
+
+void CuttableCollisionMesh::addToAdjacency(int t)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    const int a = Triangles[t][k], b = Triangles[t][(k + 1) % 3];
+    VertexTriangles[a].push_back(t);
+    auto [it, inserted] = EdgeTriangles.emplace(edgeKey(a, b), std::array<int, 2>{ { t, -1 } });
+    if (!inserted)
+    {
+      if (it->second[1] >= 0)
+      {
+        throw InvalidInputError("collision mesh '" + Name + "': edge (" + std::to_string(a) + ", " +
+                                std::to_string(b) + ") has more than two triangles");
+      }
+      it->second[1] = t;
+    }
+  }
+}
+
+void CuttableCollisionMesh::removeFromAdjacency(int t)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    const int a = Triangles[t][k], b = Triangles[t][(k + 1) % 3];
+    auto& list = VertexTriangles[a];
+    list.erase(std::find(list.begin(), list.end(), t));
+    auto it = EdgeTriangles.find(edgeKey(a, b));
+    auto& pair = it->second;
+    if (pair[0] == t)
+    {
+      pair[0] = pair[1];
+    }
+    pair[1] = -1;
+    if (pair[0] < 0)
+    {
+      EdgeTriangles.erase(it);
+    }
+  }
+}
+
+int CuttableCollisionMesh::addVertex(const Vector3& rest, double radius)
+{
+  RestPositions.push_back(rest);
+  Radii.push_back(radius);
+  VertexTriangles.emplace_back();
+  return static_cast<int>(RestPositions.size()) - 1;
+}
+
+std::unordered_map<std::uint64_t, CuttableCollisionMesh::Crossing>
+CuttableCollisionMesh::findCrossings(const Blade& blade,
+  const std::vector<Vector3>& current,
+  const CollisionCutSettings& /*settings*/) const
+{
+  std::unordered_map<std::uint64_t, Crossing> crossings;
+  BoundingBox box = blade.boundingBox();
+  const double margin = 1e-9 * box.diagonal().norm();
+  box.min().array() -= margin;
+  box.max().array() += margin;
+  for (const auto& [key, pair] : EdgeTriangles)
+  {
+    const int a = static_cast<int>(key >> 32);
+    const int b = static_cast<int>(key & 0xffffffffu);
+    BoundingBox edgeBox(current[a].cwiseMin(current[b]), current[a].cwiseMax(current[b]));
+    if (!box.intersects(edgeBox))
+    {
+      continue;
+    }
+    for (const Triangle& bt : blade.triangles)
+    {
+      const double t = segmentCrossing(
+        current[a], current[b], blade.points[bt[0]], blade.points[bt[1]], blade.points[bt[2]]);
+      if (t >= 0.0)
+      {
+        crossings.emplace(key, Crossing{ a, b, t });
+        break;
+      }
+    }
+  }
+  return crossings;
+}
+
+std::vector<CuttableCollisionMesh::TriangleFeatures> CuttableCollisionMesh::collectFeatures(
+  const std::unordered_map<std::uint64_t, Crossing>& crossings,
+  CollisionCutResult& result)
+{
+  // Crossings become snapped vertices or new edge points (sorted by edge
+  // for determinism: the map's order is not).
+  std::vector<Crossing> sorted;
+  sorted.reserve(crossings.size());
+  for (const auto& entry : crossings)
+  {
+    sorted.push_back(entry.second);
+  }
+  std::sort(sorted.begin(),
+    sorted.end(),
+    [](const Crossing& x, const Crossing& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+  std::unordered_set<int> cutVertices;
+  std::unordered_map<std::uint64_t, int> edgePoints;
+  std::vector<int> candidates;
+  for (const Crossing& c : sorted)
+  {
+    const auto pair = trianglesOfEdge(c.a, c.b);
+    candidates.insert(candidates.end(), pair.begin(), pair.end());
+    if (c.t < SnapFraction || c.t > 1.0 - SnapFraction)
+    {
+      const int v = c.t < SnapFraction ? c.a : c.b;
+      if (cutVertices.insert(v).second)
+      {
+        candidates.insert(candidates.end(), VertexTriangles[v].begin(), VertexTriangles[v].end());
+      }
+      continue;
+    }
+    const Vector3 rest = (1.0 - c.t) * RestPositions[c.a] + c.t * RestPositions[c.b];
+    const int v = addVertex(rest, (1.0 - c.t) * Radii[c.a] + c.t * Radii[c.b]);
+    edgePoints.emplace(edgeKey(c.a, c.b), v);
+    NewCollisionVertex made;
+    made.vertex = v;
+    made.edge = { c.a, c.b };
+    made.t = c.t;
+    result.newVertices.push_back(made);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  if (!candidates.empty() && candidates.front() < 0)
+  {
+    candidates.erase(candidates.begin());
+  }
+
+  std::vector<TriangleFeatures> reached;
+  for (int t : candidates)
+  {
+    TriangleFeatures f;
+    f.triangle = t;
+    const Triangle& tri = Triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      Vector3 corner = Vector3::Zero();
+      corner[k] = 1.0;
+      f.polygon.push_back(tri[k]);
+      f.barycentric.push_back(corner);
+      f.edgeOf.push_back(-1);
+      f.cornerOf.push_back(k);
+      if (cutVertices.count(tri[k]))
+      {
+        f.features.push_back(static_cast<int>(f.polygon.size()) - 1);
+      }
+      const int next = tri[(k + 1) % 3];
+      const auto found = edgePoints.find(edgeKey(tri[k], next));
+      if (found == edgePoints.end())
+      {
+        continue;
+      }
+      const Crossing& c = crossings.at(edgeKey(tri[k], next));
+      // t runs from the lower vertex; here from tri[k] to next.
+      const double s = (c.a == tri[k]) ? c.t : 1.0 - c.t;
+      Vector3 along = Vector3::Zero();
+      along[k] = 1.0 - s;
+      along[(k + 1) % 3] = s;
+      f.polygon.push_back(found->second);
+      f.barycentric.push_back(along);
+      f.edgeOf.push_back(k);
+      f.cornerOf.push_back(-1);
+      f.features.push_back(static_cast<int>(f.polygon.size()) - 1);
+    }
+    if (f.features.empty())
+    {
+      continue;
+    }
+    // A progressive cut continues from a tip left by an earlier blade.
+    for (std::size_t i = 0; i < f.polygon.size(); ++i)
+    {
+      const bool isFeature =
+        std::find(f.features.begin(), f.features.end(), static_cast<int>(i)) != f.features.end();
+      if (f.cornerOf[i] >= 0 && !isFeature && Tips.count(f.polygon[i]))
+      {
+        f.features.push_back(static_cast<int>(i));
+      }
+    }
+    reached.push_back(std::move(f));
+  }
+  return reached;
+}
+
+void CuttableCollisionMesh::splitTriangle(const TriangleFeatures& f, CollisionCutResult& result)
+{
+  const int n = static_cast<int>(f.polygon.size());
+  auto onEdge = [&f](int position, int k)
+  {
+    return f.edgeOf[position] == k || f.cornerOf[position] == k ||
+           f.cornerOf[position] == (k + 1) % 3;
+  };
+  auto shareEdge = [&](int i, int j)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (onEdge(i, k) && onEdge(j, k))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  // Choose the cut: the two features farthest apart, preferring a pair
+  // across the triangle to one along an edge.
+  int from = -1, to = -1;
+  double bestScore = -1.0;
+  for (std::size_t x = 0; x < f.features.size(); ++x)
+  {
+    for (std::size_t y = x + 1; y < f.features.size(); ++y)
+    {
+      const int i = f.features[x], j = f.features[y];
+      const double distance = (f.barycentric[i] - f.barycentric[j]).norm();
+      const double score = distance + (shareEdge(i, j) ? 0.0 : 10.0);
+      if (score > bestScore)
+      {
+        bestScore = score;
+        from = i;
+        to = j;
+      }
+    }
+  }
+  const bool inner = from >= 0 && !shareEdge(from, to);
+  if (from >= 0)
+  {
+    result.cutEdges.push_back({ f.polygon[from], f.polygon[to] });
+  }
+  if (n == 3 && !inner)
+  {
+    return; // a cut along an edge, or through a corner only
+  }
+
+  // Polygon in the triangle's plane (rest), counter-clockwise.
+  const Triangle corners = Triangles[f.triangle];
+  const Vector3 p0 = RestPositions[corners[0]];
+  const Vector3 e1 = RestPositions[corners[1]] - p0;
+  const Vector3 e2 = RestPositions[corners[2]] - p0;
+  const Vector3 xAxis = e1.normalized();
+  const Vector3 yAxis = e1.cross(e2).cross(e1).normalized();
+  const std::array<Vector2, 3> planar = {
+    Vector2::Zero(), Vector2(e1.norm(), 0.0), Vector2(e2.dot(xAxis), e2.dot(yAxis))
+  };
+  std::vector<Vector2> points(n);
+  for (int i = 0; i < n; ++i)
+  {
+    points[i] = f.barycentric[i][0] * planar[0] + f.barycentric[i][1] * planar[1] +
+                f.barycentric[i][2] * planar[2];
+  }
+  std::vector<std::array<int, 3>> pieces;
+  if (inner)
+  {
+    std::vector<int> first, second;
+    for (int i = from;; i = (i + 1) % n)
+    {
+      first.push_back(i);
+      if (i == to)
+        break;
+    }
+    for (int i = to;; i = (i + 1) % n)
+    {
+      second.push_back(i);
+      if (i == from)
+        break;
+    }
+    clipEars(points, first, pieces);
+    clipEars(points, second, pieces);
+  }
+  else
+  {
+    std::vector<int> all(n);
+    std::iota(all.begin(), all.end(), 0);
+    clipEars(points, all, pieces);
+  }
+
+  CollisionTriangleSplit split;
+  split.parent = f.triangle;
+  split.parentCorners = corners;
+  removeFromAdjacency(f.triangle);
+  for (std::size_t p = 0; p < pieces.size(); ++p)
+  {
+    const Triangle piece{
+      { f.polygon[pieces[p][0]], f.polygon[pieces[p][1]], f.polygon[pieces[p][2]] }
+    };
+    int index = f.triangle;
+    if (p == 0)
+    {
+      Triangles[index] = piece;
+    }
+    else
+    {
+      index = static_cast<int>(Triangles.size());
+      Triangles.push_back(piece);
+    }
+    addToAdjacency(index);
+    split.children.push_back(index);
+    split.childCorners.push_back(
+      { f.barycentric[pieces[p][0]], f.barycentric[pieces[p][1]], f.barycentric[pieces[p][2]] });
+    result.changedTriangles.push_back(index);
+  }
+  result.splits.push_back(std::move(split));
+}
+
+void CuttableCollisionMesh::openAlongCut(CollisionCutResult& result)
+{
+  std::vector<int> vertices;
+  for (const auto& edge : result.cutEdges)
+  {
+    vertices.push_back(edge[0]);
+    vertices.push_back(edge[1]);
+  }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  for (int v : vertices)
+  {
+    const std::vector<int> fan = VertexTriangles[v];
+    UnionFind groups(fan.size());
+    for (std::size_t i = 0; i < fan.size(); ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = Triangles[fan[i]][k], b = Triangles[fan[i]][(k + 1) % 3];
+        if ((a != v && b != v) || CutEdges.count(edgeKey(a, b)))
+        {
+          continue;
+        }
+        const auto pair = trianglesOfEdge(a, b);
+        const int other = pair[0] == fan[i] ? pair[1] : pair[0];
+        const auto found = std::find(fan.begin(), fan.end(), other);
+        if (other >= 0 && found != fan.end())
+        {
+          groups.unite(static_cast<int>(i), static_cast<int>(found - fan.begin()));
+        }
+      }
+    }
+    std::vector<int> copyOfRoot(fan.size(), -1);
+    for (std::size_t i = 0; i < fan.size(); ++i)
+    {
+      const int root = groups.find(static_cast<int>(i));
+      if (root == groups.find(0))
+      {
+        continue; // the first fan keeps the vertex
+      }
+      if (copyOfRoot[root] < 0)
+      {
+        copyOfRoot[root] = addVertex(RestPositions[v], Radii[v]);
+        NewCollisionVertex made;
+        made.vertex = copyOfRoot[root];
+        made.duplicateOf = v;
+        result.newVertices.push_back(made);
+      }
+      const int t = fan[i];
+      removeFromAdjacency(t);
+      std::replace(Triangles[t].begin(), Triangles[t].end(), v, copyOfRoot[root]);
+      addToAdjacency(t);
+      result.changedTriangles.push_back(t);
+    }
+    if (std::any_of(copyOfRoot.begin(), copyOfRoot.end(), [](int c) { return c >= 0; }))
+    {
+      result.openedVertices.push_back(v);
+    }
+  }
+  // Cut edges that opened are border edges now.
+  for (auto it = CutEdges.begin(); it != CutEdges.end();)
+  {
+    const auto pair =
+      trianglesOfEdge(static_cast<int>(*it >> 32), static_cast<int>(*it & 0xffffffffu));
+    it = (pair[1] < 0) ? CutEdges.erase(it) : std::next(it);
+  }
+}
+
+void CuttableCollisionMesh::updateTips(const std::vector<int>& sweepFeatures,
+  const std::vector<std::array<int, 2>>& sweepCutEdges)
+{
+  // The blade moves on: what it reached this time and left with at most
+  // one cut edge is where the next blade continues (the tips it continued
+  // from are behind it).
+  Tips.clear();
+  for (int v : sweepFeatures)
+  {
+    int cutEdges = 0;
+    for (const auto& edge : sweepCutEdges)
+    {
+      cutEdges += (edge[0] == v || edge[1] == v) ? 1 : 0;
+    }
+    if (cutEdges <= 1 && !VertexTriangles[v].empty())
+    {
+      Tips.insert(v);
+    }
+  }
+}
+
+CollisionCutResult CuttableCollisionMesh::cut(const Blade& blade,
+  const std::vector<Vector3>& current,
+  const CollisionCutSettings& settings)
+{
+  blade.validate("cut of collision mesh '" + Name + "'");
+  if (current.size() != RestPositions.size())
+  {
+    throw InvalidInputError("cut of collision mesh '" + Name +
+                            "': " + std::to_string(current.size()) + " current positions for " +
+                            std::to_string(RestPositions.size()) + " vertices");
+  }
+  if (!(settings.snapFraction >= 0.0 && settings.snapFraction < 0.5))
+  {
+    throw InvalidInputError("cut of collision mesh '" + Name + "': snap fraction " +
+                            std::to_string(settings.snapFraction) + " is not in [0, 0.5)");
+  }
+  SnapFraction = settings.snapFraction;
+  CollisionCutResult result;
+  const auto crossings = findCrossings(blade, current, settings);
+  if (crossings.empty())
+  {
+    return result;
+  }
+  const auto reached = collectFeatures(crossings, result);
+  std::vector<int> sweepFeatures;
+  for (const auto& f : reached)
+  {
+    for (int i : f.features)
+    {
+      if (!Tips.count(f.polygon[i]))
+        sweepFeatures.push_back(f.polygon[i]);
+    }
+    splitTriangle(f, result);
+  }
+  std::sort(sweepFeatures.begin(), sweepFeatures.end());
+  sweepFeatures.erase(std::unique(sweepFeatures.begin(), sweepFeatures.end()), sweepFeatures.end());
+  const std::vector<std::array<int, 2>> sweepCutEdges = result.cutEdges;
+  // Keep the cut edges that lie inside the mesh (two triangles), once.
+  std::vector<std::array<int, 2>> inside;
+  for (auto edge : result.cutEdges)
+  {
+    if (edge[0] > edge[1])
+      std::swap(edge[0], edge[1]);
+    if (trianglesOfEdge(edge[0], edge[1])[1] >= 0 &&
+        CutEdges.insert(edgeKey(edge[0], edge[1])).second)
+    {
+      inside.push_back(edge);
+    }
+  }
+  result.cutEdges = inside;
+  // Tips are found before opening: a copy made by opening is not a tip.
+  updateTips(sweepFeatures, sweepCutEdges);
+  openAlongCut(result);
+  std::sort(result.changedTriangles.begin(), result.changedTriangles.end());
+  result.changedTriangles.erase(
+    std::unique(result.changedTriangles.begin(), result.changedTriangles.end()),
+    result.changedTriangles.end());
+  return result;
+}
+
+} // namespace thintissue

@@ -1,0 +1,206 @@
+#include "TissueCutter.h"
+
+#include "CorotationalHexFem.h"
+#include "ThinTissueError.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace thintissue
+{
+
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+CuttableCollisionMesh makeCuttable(const TriangleMesh& collision, const std::string& radiusName)
+{
+  if (!collision.pointAttributes.has(radiusName))
+  {
+    throw InvalidInputError(
+      "collision mesh '" + collision.name + "' has no '" + radiusName + "' array");
+  }
+  const auto& radius = collision.pointAttributes.get(radiusName);
+  if (radius.components != 1 || radius.values.size() != collision.vertexCount())
+  {
+    throw InvalidInputError("collision mesh '" + collision.name + "': '" + radiusName +
+                            "' must have one value per vertex");
+  }
+  collision.checkConsistency();
+  return CuttableCollisionMesh(
+    collision.name, collision.positions, collision.triangles, radius.values);
+}
+
+} // namespace
+
+TissueCutter::TissueCutter(const TriangleMesh& collision,
+  const HexahedralMesh& simulation,
+  CorotationalHexFem* solver,
+  const TissueCutterSettings& settings)
+  : Name(collision.name)
+  , Settings(settings)
+  , Collision(makeCuttable(collision, settings.radiusArrayName))
+  , Simulation(simulation)
+  , Solver(solver)
+{
+  Simulation.checkConsistency();
+  if (Simulation.hexahedronCount() == 0)
+  {
+    throw InvalidInputError("hexahedral mesh '" + Simulation.name + "' has no hexahedron");
+  }
+  if (Solver && (Solver->nodeCount() != Simulation.nodeCount() ||
+                  Solver->hexahedronCount() != Simulation.hexahedronCount()))
+  {
+    throw InvalidInputError("tissue cutter for '" + Name +
+                            "': the solver was not made from hexahedral mesh '" + Simulation.name +
+                            "'");
+  }
+  Branches = HexahedralBranches(Simulation, Collision);
+  // A tissue torn already (or folded back within a hexahedron) starts with
+  // one copy per branch, as if its tears had been cut.
+  InitialSeparation = Branches.separateAll(Collision, Simulation);
+  updateSolver(InitialSeparation);
+  CollisionEmbedding.embed(Simulation, Collision.restPositions());
+  for (int v = 0; v < static_cast<int>(Collision.vertexCount()); ++v)
+  {
+    const int h = CollisionEmbedding.hexahedron(v);
+    const int holder = Branches.copyHolding(h, Collision.trianglesOfVertex(v));
+    if (holder >= 0 && holder != h)
+    {
+      CollisionEmbedding.setPoint(v, holder, CollisionEmbedding.localCoordinates(v));
+    }
+  }
+}
+
+std::vector<Vector3> TissueCutter::currentCollisionPositions() const
+{
+  std::vector<Vector3> positions;
+  CollisionEmbedding.mapPositions(Solver ? Solver->positions() : Simulation.nodes, positions);
+  return positions;
+}
+
+TriangleMesh TissueCutter::collisionMesh() const
+{
+  TriangleMesh mesh;
+  mesh.name = Name;
+  mesh.positions = Collision.restPositions();
+  mesh.triangles = Collision.triangles();
+  mesh.pointAttributes.set(Settings.radiusArrayName, 1, Collision.radii());
+  return mesh;
+}
+
+void TissueCutter::updateSolver(const HexahedronDuplicationResult& duplication)
+{
+  if (!Solver)
+  {
+    return;
+  }
+  for (const auto& [copy, source] : duplication.newNodes)
+  {
+    // Node copies may chain (a copy of a copy): the source exists already.
+    const std::size_t made = Solver->addNode(
+      Solver->restPositions()[source], Solver->positions()[source], Solver->velocities()[source]);
+    if (made != static_cast<std::size_t>(copy))
+    {
+      throw InvalidInputError(
+        "tissue cutter for '" + Name + "': the solver's nodes are out of step");
+    }
+    Solver->setFixed(made, Solver->isFixed(source));
+  }
+  for (const auto& [copy, source] : duplication.newHexahedra)
+  {
+    Solver->duplicateHexahedron(source, Simulation.hexahedra[copy]);
+  }
+  for (int h : duplication.renodedHexahedra)
+  {
+    Solver->replaceHexahedronNodes(h, Simulation.hexahedra[h]);
+  }
+}
+
+std::vector<int> TissueCutter::reembedCollision(const TissueCutReport& report)
+{
+  std::vector<int> changedHexes = report.simulation.renodedHexahedra;
+  const int firstNewVertex = static_cast<int>(CollisionEmbedding.pointCount());
+  std::vector<Vector3> newRest;
+  std::vector<int> candidates;
+  for (int v = firstNewVertex; v < static_cast<int>(Collision.vertexCount()); ++v)
+  {
+    newRest.push_back(Collision.restPositions()[v]);
+    for (int t : Collision.trianglesOfVertex(v))
+    {
+      candidates.insert(
+        candidates.end(), Branches.hexahedraOf(t).begin(), Branches.hexahedraOf(t).end());
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  CollisionEmbedding.updateHexahedra(Simulation, changedHexes);
+  if (!newRest.empty())
+  {
+    CollisionEmbedding.appendPoints(newRest, Simulation, candidates);
+  }
+  // Every vertex of a touched hexahedron goes to the copy holding its fan.
+  std::vector<int> vertices;
+  for (int h : report.simulation.touchedHexahedra)
+  {
+    for (int copy : Branches.copiesOf(h))
+    {
+      for (int t : Branches.trianglesOf(copy))
+      {
+        const Triangle& tri = Collision.triangles()[t];
+        vertices.insert(vertices.end(), tri.begin(), tri.end());
+      }
+    }
+  }
+  for (int v = firstNewVertex; v < static_cast<int>(Collision.vertexCount()); ++v)
+    vertices.push_back(v);
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  std::vector<int> moved;
+  for (int v : vertices)
+  {
+    const int h = CollisionEmbedding.hexahedron(v);
+    const int holder = Branches.copyHolding(h, Collision.trianglesOfVertex(v));
+    if (holder >= 0 && holder != h)
+    {
+      CollisionEmbedding.setPoint(v, holder, CollisionEmbedding.localCoordinates(v));
+      moved.push_back(v);
+    }
+    else if (v >= firstNewVertex)
+    {
+      moved.push_back(v);
+    }
+  }
+  return moved;
+}
+
+TissueCutReport TissueCutter::cut(const Blade& blade)
+{
+  const auto start = Clock::now();
+  TissueCutReport report;
+  const std::vector<Vector3> current = currentCollisionPositions();
+  report.collision = Collision.cut(blade, current, Settings.collision);
+  report.collisionMilliseconds = millisecondsSince(start);
+  if (!report.collision.changed())
+  {
+    report.totalMilliseconds = millisecondsSince(start);
+    return report;
+  }
+  const auto simulationStart = Clock::now();
+  report.simulation = Branches.update(Collision, report.collision, Simulation);
+  updateSolver(report.simulation);
+  report.simulationMilliseconds = millisecondsSince(simulationStart);
+  const auto embeddingStart = Clock::now();
+  report.reembeddedCollisionVertices = reembedCollision(report);
+  report.embeddingMilliseconds = millisecondsSince(embeddingStart);
+  report.totalMilliseconds = millisecondsSince(start);
+  return report;
+}
+
+} // namespace thintissue

@@ -1,0 +1,93 @@
+// One tissue that can be cut (thesis 5.3): its collision mesh with radii,
+// its hexahedral simulation mesh and the collision-simulation embedding,
+// kept consistent cut after cut; the solver, when given, follows every
+// topology change locally.
+//
+// cut(blade) runs 5.3.1: the blade against the collision mesh at the
+// current positions (CuttableCollisionMesh), hexahedron duplication by
+// branch analysis (HexahedralBranches), the solver updated for what changed
+// only (new nodes, copied elements with their rest state, re-noded
+// elements), and the collision vertices re-embedded in the copy holding
+// their branch.
+#ifndef TissueCutter_h
+#define TissueCutter_h
+
+#include "CollisionMeshCut.h"
+#include "HexahedralEmbedding.h"
+#include "HexahedronDuplication.h"
+#include "ThinTissueCuttingModule.h"
+
+namespace thintissue
+{
+
+class CorotationalHexFem;
+
+struct TissueCutterSettings
+{
+  CollisionCutSettings collision;
+  std::string radiusArrayName = "Radius";
+};
+
+/// What one cut did, and what it cost.
+struct TissueCutReport
+{
+  CollisionCutResult collision;
+  HexahedronDuplicationResult simulation;
+  /// Collision vertices whose embedding changed (new ones included).
+  std::vector<int> reembeddedCollisionVertices;
+  /// Milliseconds: blade test and collision re-meshing; hexahedron
+  /// duplication and solver update; embedding updates; the whole cut.
+  double collisionMilliseconds = 0.0;
+  double simulationMilliseconds = 0.0;
+  double embeddingMilliseconds = 0.0;
+  double totalMilliseconds = 0.0;
+  bool changed() const { return collision.changed(); }
+};
+
+class THINTISSUECUTTING_EXPORT TissueCutter
+{
+public:
+  /// `collision`: the mid-surface with a per-vertex radius array;
+  /// `simulation`: its hexahedra (rest). `solver`, if given, must have been
+  /// made from `simulation` and outlive the cutter; it is updated by every
+  /// cut and its positions drive the blade test. Throws InvalidInputError
+  /// naming the mesh on bad input.
+  TissueCutter(const TriangleMesh& collision,
+    const HexahedralMesh& simulation,
+    CorotationalHexFem* solver = nullptr,
+    const TissueCutterSettings& settings = {});
+
+  /// Cuts with `blade` (world coordinates). A blade that crosses nothing
+  /// changes nothing. Throws InvalidInputError, with the tissue untouched,
+  /// on a bad blade (empty, NaN, degenerate).
+  TissueCutReport cut(const Blade& blade);
+
+  const CuttableCollisionMesh& collision() const { return Collision; }
+  /// The hexahedra with their copies (rest nodes).
+  const HexahedralMesh& simulation() const { return Simulation; }
+  const HexahedralBranches& branches() const { return Branches; }
+  /// Copies made when the cutter was built (a tissue torn in places).
+  const HexahedronDuplicationResult& initialSeparation() const { return InitialSeparation; }
+  const HexahedralEmbedding& collisionEmbedding() const { return CollisionEmbedding; }
+  /// Collision vertex positions from the solver's (or the rest) node positions.
+  std::vector<Vector3> currentCollisionPositions() const;
+  /// The collision mesh as a TriangleMesh with its radius array.
+  TriangleMesh collisionMesh() const;
+
+private:
+  void updateSolver(const HexahedronDuplicationResult& duplication);
+  std::vector<int> reembedCollision(const TissueCutReport& report);
+
+  std::string Name;
+  TissueCutterSettings Settings;
+  CuttableCollisionMesh Collision;
+  HexahedralMesh Simulation;
+  HexahedralBranches Branches;
+  HexahedralEmbedding CollisionEmbedding;
+  HexahedronDuplicationResult InitialSeparation;
+  CorotationalHexFem* Solver = nullptr;
+};
+
+} // namespace thintissue
+
+#endif

@@ -1,0 +1,241 @@
+// Cutting the collision mesh (thesis 5.3.1): splitting, snapping, opening,
+// progressive cuts, cuts through vertices and along edges, repeated cuts,
+// bad blades.
+#include "CollisionMeshCut.h"
+#include "CuttingInvariants.h"
+#include "ThinTissueError.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+using namespace thintissue;
+using namespace thintissue::cutting_test;
+
+namespace
+{
+
+/// A flat n x n grid of unit cells in z = 0, two triangles a cell, radius
+/// 0.1.
+CuttableCollisionMesh grid(int n)
+{
+  std::vector<Vector3> x;
+  std::vector<Triangle> t;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      x.emplace_back(i, j, 0.0);
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+    {
+      t.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+      t.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+    }
+  return CuttableCollisionMesh("grid", x, t, std::vector<double>(x.size(), 0.1));
+}
+
+/// A vertical scalpel at x = `x` swept from y0 to y1.
+Blade scalpelAlongY(double x, double y0, double y1)
+{
+  return Blade::sweptSegment(
+    Vector3(x, y0, -1), Vector3(x, y0, 1), Vector3(x, y1, -1), Vector3(x, y1, 1));
+}
+
+int pieceCount(const CuttableCollisionMesh& mesh)
+{
+  int count = 0;
+  collisionPieces(mesh, count);
+  return count;
+}
+
+int borderEdgeCount(const CuttableCollisionMesh& mesh)
+{
+  int count = 0;
+  for (const auto& tri : mesh.triangles())
+    for (int k = 0; k < 3; ++k)
+      count += mesh.trianglesOfEdge(tri[k], tri[(k + 1) % 3])[1] < 0 ? 1 : 0;
+  return count;
+}
+
+double worstShape(const CuttableCollisionMesh& mesh)
+{
+  double worst = 1.0;
+  const auto& x = mesh.restPositions();
+  for (const auto& t : mesh.triangles())
+  {
+    const double area2 = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
+    const double longest = std::max({ (x[t[1]] - x[t[0]]).squaredNorm(),
+      (x[t[2]] - x[t[1]]).squaredNorm(),
+      (x[t[0]] - x[t[2]]).squaredNorm() });
+    worst = std::min(worst, area2 / longest);
+  }
+  return worst;
+}
+
+} // namespace
+
+TEST(CollisionMeshCut, ACutThroughSeparatesTheMeshIntoTwoPieces)
+{
+  CuttableCollisionMesh mesh = grid(4);
+  const auto result = mesh.cut(scalpelAlongY(2.4, -1, 5), mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(pieceCount(mesh), 2);
+  // Four cells crossed, two triangles each crossed through two edges.
+  EXPECT_EQ(result.splits.size(), 8u);
+  for (const auto& split : result.splits)
+    EXPECT_EQ(split.children.size(), 3u) << "triangle " << split.parent;
+  // Five crossings on the vertical... on the horizontal and diagonal edges:
+  // every new edge point on the cut is duplicated except none (the cut
+  // leaves the mesh at both ends).
+  int duplicates = 0;
+  for (const auto& v : result.newVertices)
+    duplicates += v.duplicateOf >= 0 ? 1 : 0;
+  EXPECT_EQ(duplicates, static_cast<int>(result.newVertices.size()) - duplicates);
+  // Radii are interpolated: all 0.1 here.
+  for (double r : mesh.radii())
+    EXPECT_DOUBLE_EQ(r, 0.1);
+  // Pieces keep the orientation of their parent (normals +z).
+  for (const auto& t : mesh.triangles())
+  {
+    const auto& x = mesh.restPositions();
+    EXPECT_GT((x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).z(), 0.0);
+  }
+  EXPECT_GT(worstShape(mesh), 0.1);
+}
+
+TEST(CollisionMeshCut, TheSplitPiecesCarryTheirBarycentricCorners)
+{
+  CuttableCollisionMesh mesh = grid(2);
+  const auto before = mesh.restPositions();
+  const auto result = mesh.cut(scalpelAlongY(0.5, -1, 3), mesh.restPositions());
+  ASSERT_FALSE(result.splits.empty());
+  for (const auto& split : result.splits)
+  {
+    for (std::size_t c = 0; c < split.children.size(); ++c)
+    {
+      const Triangle& piece = mesh.triangles()[split.children[c]];
+      for (int k = 0; k < 3; ++k)
+      {
+        const Vector3& w = split.childCorners[c][k];
+        const Vector3 p = w[0] * before[split.parentCorners[0]] +
+                          w[1] * before[split.parentCorners[1]] +
+                          w[2] * before[split.parentCorners[2]];
+        EXPECT_NEAR((p - mesh.restPositions()[piece[k]]).norm(), 0.0, 1e-12);
+      }
+    }
+  }
+}
+
+TEST(CollisionMeshCut, ACutThatStopsHalfWayOpensUpToItsTip)
+{
+  CuttableCollisionMesh mesh = grid(4);
+  const int borderBefore = borderEdgeCount(mesh);
+  mesh.cut(scalpelAlongY(2.4, -1, 2.3), mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(pieceCount(mesh), 1);
+  EXPECT_GT(borderEdgeCount(mesh), borderBefore + 2);
+  EXPECT_FALSE(mesh.cutTips().empty());
+}
+
+TEST(CollisionMeshCut, AProgressiveCutContinuesFromItsTip)
+{
+  CuttableCollisionMesh whole = grid(4);
+  whole.cut(scalpelAlongY(2.4, -1, 5), whole.restPositions());
+  CuttableCollisionMesh steps = grid(4);
+  // Small steps, most ending inside a triangle.
+  double y = -1.0;
+  for (double next : { -0.2, 0.3, 0.45, 1.1, 1.6, 2.3, 2.9, 3.2, 3.8, 4.4, 5.0 })
+  {
+    steps.cut(scalpelAlongY(2.4, y, next), steps.restPositions());
+    ASSERT_TRUE(collisionMeshIsValid(steps)) << "after the step to y = " << next;
+    y = next;
+  }
+  EXPECT_EQ(pieceCount(steps), 2);
+  EXPECT_EQ(pieceCount(whole), 2);
+  EXPECT_EQ(steps.closedCutEdgeCount(), 0u);
+}
+
+TEST(CollisionMeshCut, CutsThroughVerticesAndAlongEdges)
+{
+  // x = 2 holds a column of vertices and vertical edges.
+  CuttableCollisionMesh mesh = grid(4);
+  const auto result = mesh.cut(scalpelAlongY(2.0, -1, 5), mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(pieceCount(mesh), 2);
+  EXPECT_TRUE(result.splits.empty()); // along edges: nothing to split
+  EXPECT_EQ(mesh.triangleCount(), 32u);
+  // Near a vertex column: snapped onto it, no sliver.
+  CuttableCollisionMesh near = grid(4);
+  near.cut(scalpelAlongY(2.05, -1, 5), near.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(near));
+  EXPECT_EQ(pieceCount(near), 2);
+  EXPECT_GT(worstShape(near), 0.1);
+  // The diagonal through the cells' corners.
+  CuttableCollisionMesh diagonal = grid(4);
+  diagonal.cut(Blade::sweptSegment(
+                 Vector3(-1, -1, -1), Vector3(-1, -1, 1), Vector3(5, 5, -1), Vector3(5, 5, 1)),
+    diagonal.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(diagonal));
+  EXPECT_EQ(pieceCount(diagonal), 2);
+  EXPECT_EQ(diagonal.triangleCount(), 32u);
+}
+
+TEST(CollisionMeshCut, ATangentBladeAndARepeatedCutChangeNothing)
+{
+  CuttableCollisionMesh mesh = grid(4);
+  // Touches the mesh's border vertex (4, 4) only.
+  const auto tangent = mesh.cut(
+    Blade::sweptSegment(Vector3(4, 4, -1), Vector3(4, 4, 1), Vector3(6, 2, -1), Vector3(6, 2, 1)),
+    mesh.restPositions());
+  EXPECT_FALSE(tangent.changed());
+  mesh.cut(scalpelAlongY(2.4, -1, 5), mesh.restPositions());
+  const std::size_t vertices = mesh.vertexCount(), triangles = mesh.triangleCount();
+  const auto again = mesh.cut(scalpelAlongY(2.4, -1, 5), mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(mesh.vertexCount(), vertices);
+  EXPECT_EQ(mesh.triangleCount(), triangles);
+  EXPECT_FALSE(again.changed());
+}
+
+TEST(CollisionMeshCut, ABiteOutlineCutsAPieceFree)
+{
+  CuttableCollisionMesh mesh = grid(6);
+  std::vector<Vector3> low, high;
+  for (int i = 0; i < 24; ++i)
+  {
+    const double a = 2.0 * M_PI * (i + 0.37) / 24.0;
+    low.emplace_back(3.1 + 1.7 * std::cos(a), 2.9 + 1.7 * std::sin(a), -1.0);
+    high.emplace_back(3.1 + 1.7 * std::cos(a), 2.9 + 1.7 * std::sin(a), 1.0);
+  }
+  mesh.cut(Blade::sweptOutline(low, high), mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(pieceCount(mesh), 2);
+}
+
+TEST(CollisionMeshCut, BadBladesAndPositionsLeaveTheMeshUntouched)
+{
+  CuttableCollisionMesh mesh = grid(3);
+  const auto triangles = mesh.triangles();
+  Blade nan = scalpelAlongY(1.5, -1, 4);
+  nan.points[2].x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(mesh.cut(nan, mesh.restPositions()), InvalidInputError);
+  EXPECT_THROW(mesh.cut(Blade{}, mesh.restPositions()), InvalidInputError);
+  EXPECT_THROW(mesh.cut(scalpelAlongY(1.5, 2, 2), mesh.restPositions()), InvalidInputError);
+  EXPECT_THROW(mesh.cut(scalpelAlongY(1.5, -1, 4), {}), InvalidInputError);
+  CollisionCutSettings snapTooLarge;
+  snapTooLarge.snapFraction = 0.6;
+  EXPECT_THROW(
+    mesh.cut(scalpelAlongY(1.5, -1, 4), mesh.restPositions(), snapTooLarge), InvalidInputError);
+  EXPECT_EQ(mesh.triangles(), triangles);
+  EXPECT_EQ(mesh.vertexCount(), 16u);
+}
+
+TEST(CollisionMeshCut, NonManifoldOrInconsistentMeshesAreRefused)
+{
+  std::vector<Vector3> x = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 } };
+  EXPECT_THROW(CuttableCollisionMesh("flipped", x, { { 0, 1, 2 }, { 1, 2, 3 } }, { 1, 1, 1, 1 }),
+    InvalidInputError);
+  EXPECT_THROW(CuttableCollisionMesh("radii", x, { { 0, 1, 2 } }, { 1, 1 }), InvalidInputError);
+  EXPECT_THROW(
+    CuttableCollisionMesh("index", x, { { 0, 1, 9 } }, { 1, 1, 1, 1 }), InvalidInputError);
+}

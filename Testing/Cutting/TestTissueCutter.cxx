@@ -1,0 +1,346 @@
+// A tissue cut consistently across its collision and simulation meshes
+// (thesis 5.3.1): hexahedron duplication by branch analysis, the solver
+// following the cut, separation, and random blade sweeps with the
+// invariants checked after every cut.
+#include "CorotationalHexFem.h"
+#include "CuttingInvariants.h"
+#include "MeniscusModel.h"
+#include "ThinSheetModel.h"
+#include "ThinTissueError.h"
+#include "TissueCutter.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <random>
+
+using namespace thintissue;
+using namespace thintissue::cutting_test;
+
+namespace
+{
+
+LinearMaterial softTissue()
+{
+  LinearMaterial material; // mm, N, s
+  material.youngModulus = 0.5;
+  material.poissonRatio = 0.45;
+  material.density = 1.0e-9;
+  return material;
+}
+
+CorotationalHexFemSettings smallSteps()
+{
+  CorotationalHexFemSettings settings;
+  settings.timeStep = 0.01;
+  return settings;
+}
+
+/// A vertical scalpel at x = `x` swept along y from y0 to y1.
+Blade scalpelAlongY(double x, double y0, double y1)
+{
+  return Blade::sweptSegment(
+    Vector3(x, y0, -10), Vector3(x, y0, 10), Vector3(x, y1, -10), Vector3(x, y1, 10));
+}
+
+/// Largest displacement of the nodes used by hexahedra holding collision
+/// triangles of the given side of x = 0.3.
+double largestDisplacement(const CorotationalHexFem& fem, const TissueCutter& cutter, bool left)
+{
+  double largest = 0.0;
+  const auto& mesh = cutter.simulation();
+  for (std::size_t h = 0; h < mesh.hexahedronCount(); ++h)
+  {
+    for (int t : cutter.branches().trianglesOf(static_cast<int>(h)))
+    {
+      const Triangle& tri = cutter.collision().triangles()[t];
+      const Vector3 centre =
+        (cutter.collision().restPositions()[tri[0]] + cutter.collision().restPositions()[tri[1]] +
+          cutter.collision().restPositions()[tri[2]]) /
+        3.0;
+      if ((centre.x() < 0.3) != left)
+        continue;
+      for (int node : mesh.hexahedra[h])
+        largest = std::max(largest, (fem.positions()[node] - fem.restPositions()[node]).norm());
+    }
+  }
+  return largest;
+}
+
+/// Pulls the nodes left of x = -20 up for `steps` steps.
+void pullLeftHalfUp(CorotationalHexFem& fem, int steps)
+{
+  for (std::size_t n = 0; n < fem.nodeCount(); ++n)
+    if (fem.restPositions()[n].x() < -20.0 && !fem.isFixed(n))
+      fem.setExternalForce(n, Vector3(0, 0, 1e-4));
+  for (int s = 0; s < steps; ++s)
+    ASSERT_TRUE(fem.step().ok);
+}
+
+} // namespace
+
+TEST(TissueCutter, ASheetCutInTwoSeparates)
+{
+  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
+  // Control: uncut, pulling the left half moves the right one.
+  {
+    CorotationalHexFem fem(sheet.simulation, softTissue(), smallSteps());
+    TissueCutter cutter(sheet.collision, sheet.simulation, &fem);
+    pullLeftHalfUp(fem, 20);
+    EXPECT_GT(largestDisplacement(fem, cutter, false), 1e-3);
+  }
+  CorotationalHexFem fem(sheet.simulation, softTissue(), smallSteps());
+  TissueCutter cutter(sheet.collision, sheet.simulation, &fem);
+  const auto report = cutter.cut(scalpelAlongY(0.3, -60, 60));
+  ASSERT_TRUE(report.changed());
+  EXPECT_TRUE(cutterIsConsistent(cutter, sheet.simulation));
+  int pieces = 0;
+  collisionPieces(cutter.collision(), pieces);
+  EXPECT_EQ(pieces, 2);
+  // The column of nine hexahedra the cut runs through is duplicated.
+  EXPECT_EQ(report.simulation.newHexahedra.size(), 9u);
+  EXPECT_EQ(cutter.simulation().hexahedronCount(), fem.hexahedronCount());
+  EXPECT_EQ(cutter.simulation().nodeCount(), fem.nodeCount());
+  pullLeftHalfUp(fem, 20);
+  EXPECT_GT(largestDisplacement(fem, cutter, true), 1e-2);
+  // Nothing couples the right half: only the linear solver's round-off.
+  EXPECT_LT(largestDisplacement(fem, cutter, false), 1e-9);
+  // The collision mesh follows: the left lip is up, the right one is not.
+  const auto current = cutter.currentCollisionPositions();
+  for (std::size_t v = 0; v < current.size(); ++v)
+  {
+    const Vector3& rest = cutter.collision().restPositions()[v];
+    EXPECT_TRUE(current[v].allFinite());
+    if (rest.x() > 10.0)
+    {
+      EXPECT_NEAR((current[v] - rest).norm(), 0.0, 1e-9) << "vertex " << v;
+    }
+  }
+}
+
+TEST(TissueCutter, ACutThatStopsHalfWayLeavesOnePieceThatOpens)
+{
+  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
+  CorotationalHexFem fem(sheet.simulation, softTissue(), smallSteps());
+  TissueCutter cutter(sheet.collision, sheet.simulation, &fem);
+  const auto report = cutter.cut(scalpelAlongY(0.3, -60, 5));
+  ASSERT_TRUE(report.changed());
+  EXPECT_TRUE(cutterIsConsistent(cutter, sheet.simulation));
+  int pieces = 0;
+  collisionPieces(cutter.collision(), pieces);
+  EXPECT_EQ(pieces, 1);
+  ASSERT_FALSE(report.simulation.newNodes.empty());
+  // Lips pulled apart: up on the left of the cut, down on the right.
+  for (std::size_t n = 0; n < fem.nodeCount(); ++n)
+  {
+    const Vector3& x = fem.restPositions()[n];
+    if (!fem.isFixed(n) && x.y() < -20.0 && std::abs(x.x()) < 15.0)
+      fem.setExternalForce(n, Vector3(0, 0, 0.0));
+  }
+  for (const auto& [copy, source] : report.simulation.newNodes)
+  {
+    if (fem.restPositions()[source].y() < -20.0)
+    {
+      fem.setExternalForce(copy, Vector3(0, 0, 2e-4));
+      fem.setExternalForce(source, Vector3(0, 0, -2e-4));
+    }
+  }
+  for (int s = 0; s < 20; ++s)
+    ASSERT_TRUE(fem.step().ok);
+  double widest = 0.0;
+  for (const auto& [copy, source] : report.simulation.newNodes)
+    widest = std::max(widest, (fem.positions()[copy] - fem.positions()[source]).norm());
+  EXPECT_GT(widest, 1e-2);
+}
+
+TEST(TissueCutter, BadBladesLeaveTheTissueUntouched)
+{
+  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
+  CorotationalHexFem fem(sheet.simulation, softTissue(), smallSteps());
+  TissueCutter cutter(sheet.collision, sheet.simulation, &fem);
+  Blade nan = scalpelAlongY(0.3, -60, 60);
+  nan.points[1].z() = std::nan("");
+  EXPECT_THROW(cutter.cut(nan), InvalidInputError);
+  EXPECT_THROW(cutter.cut(scalpelAlongY(0.3, 10, 10)), InvalidInputError);
+  EXPECT_EQ(cutter.collision().vertexCount(), sheet.collision.vertexCount());
+  EXPECT_EQ(cutter.simulation().hexahedronCount(), sheet.simulation.hexahedronCount());
+  EXPECT_EQ(fem.nodeCount(), sheet.simulation.nodeCount());
+  TriangleMesh noRadius = sheet.collision;
+  noRadius.pointAttributes.remove("Radius");
+  EXPECT_THROW(TissueCutter(noRadius, sheet.simulation), InvalidInputError);
+}
+
+namespace
+{
+
+/// Random sweeps over a tissue: straight cuts across, short progressive
+/// steps, cuts through vertices and along edges, repeated cuts, bite
+/// outlines and zero-length (refused) sweeps; the invariants after each.
+class RandomSweeps
+{
+public:
+  RandomSweeps(const TissueModel& model, unsigned seed)
+    : Model(model)
+    , Random(seed)
+  {
+  }
+
+  void run(int episodes, int sweepsPerEpisode)
+  {
+    for (int e = 0; e < episodes; ++e)
+    {
+      CorotationalHexFem fem(Model.simulation, softTissue(), smallSteps());
+      TissueCutter cutter(Model.collision, Model.simulation, &fem);
+      for (int s = 0; s < sweepsPerEpisode; ++s)
+      {
+        const Blade blade = nextBlade(cutter);
+        if (blade.triangles.empty())
+          continue;
+        const std::size_t vertices = cutter.collision().vertexCount();
+        const std::size_t hexahedra = cutter.simulation().hexahedronCount();
+        try
+        {
+          const auto report = cutter.cut(blade);
+          // Counts grow by what the cut touched only: copies of touched
+          // hexahedra, at most one edge point and copies per changed triangle.
+          const auto& touched = report.simulation.touchedHexahedra;
+          EXPECT_EQ(cutter.simulation().hexahedronCount() - hexahedra,
+            report.simulation.newHexahedra.size());
+          for (const auto& [copy, source] : report.simulation.newHexahedra)
+            EXPECT_TRUE(std::binary_search(touched.begin(), touched.end(), source));
+          EXPECT_LE(cutter.collision().vertexCount() - vertices,
+            4 * report.collision.changedTriangles.size());
+        }
+        catch (const InvalidInputError&)
+        {
+          ++Refused;
+          ASSERT_EQ(cutter.collision().vertexCount(), vertices);
+        }
+        ++Sweeps;
+        ASSERT_TRUE(cutterIsConsistent(cutter, Model.simulation))
+          << Model.name << ", episode " << e << ", sweep " << s;
+        ASSERT_EQ(fem.nodeCount(), cutter.simulation().nodeCount());
+        ASSERT_TRUE(fem.step().ok) << Model.name << ", episode " << e << ", sweep " << s;
+      }
+    }
+  }
+  int Sweeps = 0;
+  int Refused = 0;
+
+private:
+  double uniform(double a, double b)
+  {
+    return std::uniform_real_distribution<double>(a, b)(Random);
+  }
+  Vector3 pointIn(const BoundingBox& box)
+  {
+    return Vector3(uniform(box.min().x(), box.max().x()),
+      uniform(box.min().y(), box.max().y()),
+      uniform(box.min().z(), box.max().z()));
+  }
+
+  Blade nextBlade(const TissueCutter& cutter)
+  {
+    const auto current = cutter.currentCollisionPositions();
+    const BoundingBox box = boundingBoxOf(current);
+    const double size = box.diagonal().norm();
+    const Vector3 up = Vector3::UnitZ() * size;
+    const int kind = std::uniform_int_distribution<int>(0, 9)(Random);
+    const auto& tris = cutter.collision().triangles();
+    const Triangle& tri =
+      tris[std::uniform_int_distribution<std::size_t>(0, tris.size() - 1)(Random)];
+    switch (kind)
+    {
+      case 0: // along an edge of the collision mesh
+        return Blade::sweptSegment(
+          current[tri[0]] - up, current[tri[0]] + up, current[tri[1]] - up, current[tri[1]] + up);
+      case 1: // through a vertex
+      {
+        const Vector3 through = current[tri[0]];
+        const Vector3 d = Vector3(uniform(-1, 1), uniform(-1, 1), 0).normalized() * 0.3 * size;
+        return Blade::sweptSegment(
+          through - d - up, through - d + up, through + d - up, through + d + up);
+      }
+      case 2: // zero length: refused
+      {
+        const Vector3 p = pointIn(box);
+        return Blade::sweptSegment(p - up, p + up, p - up, p + up);
+      }
+      case 3: // repeated in place
+        if (!Last.empty())
+          return Last;
+        [[fallthrough]];
+      case 4: // short progressive step from the last blade's end
+      {
+        const Vector3 from = Last.empty() ? pointIn(box) : Vector3(Last.points[3] + up);
+        const Vector3 to = from + Vector3(uniform(-1, 1), uniform(-1, 1), 0) * 0.08 * size;
+        Last = Blade::sweptSegment(from - up, from + up, to - up, to + up);
+        return Last;
+      }
+      case 5: // a bite outline
+      {
+        const Vector3 centre = pointIn(box);
+        const double radius = uniform(0.03, 0.2) * size;
+        std::vector<Vector3> low, high;
+        for (int i = 0; i < 12; ++i)
+        {
+          const double a = 2.0 * M_PI * (i + uniform(0, 0.5)) / 12.0;
+          const Vector3 p = centre + radius * Vector3(std::cos(a), std::sin(a), 0);
+          low.push_back(p - up);
+          high.push_back(p + up);
+        }
+        return Blade::sweptOutline(low, high);
+      }
+      default: // a straight sweep across, tilted
+      {
+        const Vector3 a = pointIn(box), b = pointIn(box);
+        const Vector3 tilt(uniform(-0.3, 0.3), uniform(-0.3, 0.3), 1.0);
+        Last =
+          Blade::sweptSegment(a - tilt * size, a + tilt * size, b - tilt * size, b + tilt * size);
+        return Last;
+      }
+    }
+  }
+
+  const TissueModel& Model;
+  std::mt19937 Random;
+  Blade Last;
+};
+
+int sweepScale()
+{
+  // THINTISSUE_CUT_SOAK=N runs N times as many sweeps (a longer soak).
+  const char* soak = std::getenv("THINTISSUE_CUT_SOAK");
+  return soak ? std::max(1, std::atoi(soak)) : 1;
+}
+
+} // namespace
+
+TEST(TissueCutterProperty, RandomSweepsOverTheSheetKeepEveryInvariant)
+{
+  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
+  RandomSweeps sweeps(sheet, 1234u);
+  sweeps.run(200 * sweepScale(), 20);
+  EXPECT_EQ(sweeps.Sweeps, 4000 * sweepScale());
+  EXPECT_GT(sweeps.Refused, 0);
+}
+
+TEST(TissueCutterProperty, RandomSweepsOverTheMenisciKeepEveryInvariant)
+{
+  int total = 0;
+  unsigned seed = 99u;
+  for (MeniscusTearType tear : { MeniscusTearType::None,
+         MeniscusTearType::Longitudinal,
+         MeniscusTearType::Radial,
+         MeniscusTearType::Flap })
+  {
+    MeniscusParameters parameters;
+    parameters.tear = defaultMeniscusTear(tear);
+    const MeniscusModel meniscus = makeMeniscus(parameters);
+    RandomSweeps sweeps(meniscus, seed++);
+    sweeps.run(80 * sweepScale(), 20);
+    total += sweeps.Sweeps;
+  }
+  EXPECT_EQ(total, 6400 * sweepScale());
+}
