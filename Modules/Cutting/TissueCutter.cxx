@@ -61,6 +61,13 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
                             "': the solver was not made from hexahedral mesh '" + Simulation.name +
                             "'");
   }
+  if (Solver)
+  {
+    // Cuts add nodes and copies: room for four times the mesh up front.
+    Solver->reserve(4 * Solver->nodeCount(), 4 * Solver->hexahedronCount());
+  }
+  Simulation.nodes.reserve(4 * Simulation.nodeCount());
+  Simulation.hexahedra.reserve(4 * Simulation.hexahedronCount());
   Branches = HexahedralBranches(Simulation, Collision);
   // A tissue torn already (or folded back within a hexahedron) starts with
   // one copy per branch, as if its tears had been cut.

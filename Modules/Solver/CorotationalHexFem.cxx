@@ -240,6 +240,17 @@ void CorotationalHexFem::setMaterial(std::size_t hexahedron, const LinearMateria
   updateNodeMasses();
 }
 
+void CorotationalHexFem::reserve(std::size_t nodes, std::size_t hexahedra)
+{
+  RestPositions.reserve(nodes);
+  Positions.reserve(nodes);
+  Velocities.reserve(nodes);
+  ExternalForces.reserve(nodes);
+  Fixed.reserve(nodes);
+  NodeMasses.reserve(nodes);
+  Elements.reserve(hexahedra);
+}
+
 std::size_t CorotationalHexFem::addNode(const Vector3& rest,
   const Vector3& position,
   const Vector3& velocity)

@@ -219,6 +219,10 @@ public:
   int factorizationCount() const;
 
   // --- Topology changes (cutting) -----------------------------------------
+  /// Room for this many nodes and hexahedra, so that the topology changes
+  /// of later cuts copy nothing (an element holds its 24 x 24 stiffness:
+  /// growing the element table moved and faulted in all of them).
+  void reserve(std::size_t nodes, std::size_t hexahedra);
   /// A new node at rest position `rest` (current position and velocity as
   /// given); returns its index. Not simulated until a hexahedron uses it.
   std::size_t addNode(const Vector3& rest, const Vector3& position, const Vector3& velocity);

@@ -1,0 +1,153 @@
+// Suite "cutting": per-cut times of the simulation phase (thesis 5.3), split
+// by stage: the blade against the collision mesh with its re-meshing
+// (5.3.1), hexahedron duplication with the solver update, the
+// collision-simulation embedding update, and the whole cut; then the
+// solver's first step after the cut (new pattern and factor). Cases: the
+// thin sheet with the collision meshes of table 5-6, the medial meniscus,
+// the steak of table 5-2 (when ../shared/data holds it), and the counts of
+// vertices and elements over 6 consecutive cuts (fig. 5-17).
+//
+// The visual cut (5.3.2-5.3.5) is not in these times yet: the thesis's
+// totals (tables 5-2, 5-4, 5-6) include it, so they are not printed as
+// the thesis figure of these cases.
+#include "BenchmarkRegistry.h"
+
+#include "CorotationalHexFem.h"
+#include "MeniscusModel.h"
+#include "MeshImport.h"
+#include "ThinSheetModel.h"
+#include "TissueBundle.h"
+#include "TissueCutter.h"
+
+#include <algorithm>
+#include <filesystem>
+
+namespace
+{
+using namespace thintissue;
+using namespace thintissue::bench;
+
+LinearMaterial softTissue()
+{
+  LinearMaterial material; // mm, N, s
+  material.youngModulus = 0.5;
+  material.poissonRatio = 0.45;
+  material.density = 1.0e-9;
+  return material;
+}
+
+double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+/// A vertical scalpel across the tissue's box at fraction `at` of its x
+/// extent, swept along y over the whole box.
+Blade scalpelAcross(const BoundingBox& box, double at)
+{
+  const double x = box.min().x() + at * box.sizes().x();
+  const double z0 = box.min().z() - box.sizes().norm(), z1 = box.max().z() + box.sizes().norm();
+  const double y0 = box.min().y() - 1.0, y1 = box.max().y() + 1.0;
+  return Blade::sweptSegment(
+    Vector3(x, y0, z0), Vector3(x, y0, z1), Vector3(x, y1, z0), Vector3(x, y1, z1));
+}
+
+void cutAndReport(const std::string& name,
+  const TriangleMesh& collision,
+  const HexahedralMesh& simulation,
+  int repetitions,
+  BenchmarkReporter& reporter)
+{
+  std::vector<double> stages[5];
+  std::size_t touched = 0;
+  for (int r = 0; r < repetitions; ++r)
+  {
+    CorotationalHexFem fem(simulation, softTissue());
+    fem.step(); // the factor exists before the cut, as in a running simulation
+    TissueCutter cutter(collision, simulation, &fem);
+    const auto report = cutter.cut(scalpelAcross(boundingBoxOf(collision.positions), 0.53));
+    touched = report.simulation.touchedHexahedra.size();
+    const auto stepStart = std::chrono::steady_clock::now();
+    fem.step();
+    stages[4].push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - stepStart)
+        .count());
+    stages[0].push_back(report.collisionMilliseconds);
+    stages[1].push_back(report.simulationMilliseconds);
+    stages[2].push_back(report.embeddingMilliseconds);
+    stages[3].push_back(report.totalMilliseconds);
+  }
+  const std::string what = name + " (" + std::to_string(collision.vertexCount()) +
+                           " collision vertices, " + std::to_string(simulation.hexahedronCount()) +
+                           " hexahedra, " + std::to_string(touched) + " touched)";
+  reporter.report(what, "collision cut and re-meshing (5.3.1)", median(stages[0]), "ms");
+  reporter.report(what, "hexahedron duplication and solver update", median(stages[1]), "ms");
+  reporter.report(what, "collision-simulation embedding update", median(stages[2]), "ms");
+  reporter.report(what, "collision and simulation cut, total", median(stages[3]), "ms");
+  reporter.report(what, "first solver step after the cut", median(stages[4]), "ms");
+}
+
+/// Fig. 5-17: counts over 6 consecutive cuts across the tissue.
+void countConsecutiveCuts(const std::string& name,
+  const TriangleMesh& collision,
+  const HexahedralMesh& simulation,
+  BenchmarkReporter& reporter)
+{
+  CorotationalHexFem fem(simulation, softTissue());
+  TissueCutter cutter(collision, simulation, &fem);
+  const BoundingBox box = boundingBoxOf(collision.positions);
+  for (int c = 1; c <= 6; ++c)
+  {
+    cutter.cut(scalpelAcross(box, 0.12 * c + 0.03));
+    const std::string what = name + ", after cut " + std::to_string(c);
+    reporter.report(what, "collision vertices", double(cutter.collision().vertexCount()), "count");
+    reporter.report(
+      what, "collision triangles", double(cutter.collision().triangleCount()), "count");
+    reporter.report(what, "simulation nodes", double(cutter.simulation().nodeCount()), "count");
+    reporter.report(what, "hexahedra", double(cutter.simulation().hexahedronCount()), "count");
+  }
+}
+
+} // namespace
+
+THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
+  "cutting",
+  "per-cut times by stage (collision cut, hexahedron duplication, embeddings) and counts over 6 "
+  "cuts: sheet (table 5-6), meniscus, steak (table 5-2)")
+(const BenchmarkContext& context, BenchmarkReporter& reporter)
+{
+  const int repetitions = context.quick ? 3 : 21;
+  for (int model = 1; model <= (context.quick ? 1 : 3); ++model)
+  {
+    const TissueModel sheet = makeThinSheet(thesisSheetCollisionResolution(model));
+    cutAndReport("thin sheet, collision model " + std::to_string(model),
+      sheet.collision,
+      sheet.simulation,
+      repetitions,
+      reporter);
+  }
+  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
+  countConsecutiveCuts(
+    "thin sheet, collision model 1", sheet.collision, sheet.simulation, reporter);
+  if (context.quick)
+  {
+    return;
+  }
+  const MeniscusModel meniscus = makeMeniscus();
+  cutAndReport("medial meniscus", meniscus.collision, meniscus.simulation, repetitions, reporter);
+  const std::string steak = context.sharedDataDirectory + "/steak/steak.obj";
+  if (!std::filesystem::exists(steak))
+  {
+    reporter.skip("steak", "no " + steak);
+    return;
+  }
+  TissuePreparationSettings settings;
+  settings.collision.vertexCount = 85;
+  settings.hexahedronCount = 76;
+  const TissueBundle bundle = prepareTissue(readTriangleMesh(steak), settings);
+  cutAndReport(
+    "steak, 85 collision vertices", bundle.collision, bundle.simulation, repetitions, reporter);
+  countConsecutiveCuts(
+    "steak, 85 collision vertices", bundle.collision, bundle.simulation, reporter);
+}
