@@ -64,6 +64,11 @@ THINTISSUE_BENCHMARK_SUITE(prepareSuite,
     prepareAndReport("steak, 50 collision vertices", surface, 50, 76, 5.1, repetitions, reporter);
     prepareAndReport("steak, 85 collision vertices", surface, 85, 76, 10.2, repetitions, reporter);
   }
+  // The sheet runs in the quick smoke run too: every suite reports there,
+  // with or without ../shared/data.
+  const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(2));
+  prepareAndReport(
+    "thin sheet, visual model 2", sheet.visual, 65, 81, std::nullopt, repetitions, reporter);
   if (context.quick)
   {
     return;
@@ -76,7 +81,4 @@ THINTISSUE_BENCHMARK_SUITE(prepareSuite,
     std::nullopt,
     repetitions,
     reporter);
-  const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(2));
-  prepareAndReport(
-    "thin sheet, visual model 2", sheet.visual, 65, 81, std::nullopt, repetitions, reporter);
 }
