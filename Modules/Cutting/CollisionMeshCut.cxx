@@ -1,6 +1,7 @@
 #include "CollisionMeshCut.h"
 
 #include "ThinTissueError.h"
+#include "UnionFind.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,34 +33,6 @@ struct CuttableCollisionMesh::TriangleFeatures
 
 namespace
 {
-
-struct UnionFind
-{
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n)
-    : parent(n)
-  {
-    std::iota(parent.begin(), parent.end(), 0);
-  }
-  int find(int i)
-  {
-    while (parent[i] != i)
-    {
-      parent[i] = parent[parent[i]];
-      i = parent[i];
-    }
-    return i;
-  }
-  void unite(int i, int j)
-  {
-    i = find(i);
-    j = find(j);
-    if (i != j)
-    {
-      parent[std::max(i, j)] = std::min(i, j);
-    }
-  }
-};
 
 /// Where segment p-q crosses triangle (a, b, c): parameter t in [0, 1] from
 /// p, or a negative value. Segments in the triangle's plane do not cross.
@@ -273,9 +246,7 @@ int CuttableCollisionMesh::addVertex(const Vector3& rest, double radius)
 }
 
 std::unordered_map<std::uint64_t, CuttableCollisionMesh::Crossing>
-CuttableCollisionMesh::findCrossings(const Blade& blade,
-  const std::vector<Vector3>& current,
-  const CollisionCutSettings& /*settings*/) const
+CuttableCollisionMesh::findCrossings(const Blade& blade, const std::vector<Vector3>& current) const
 {
   std::unordered_map<std::uint64_t, Crossing> crossings;
   BoundingBox box = blade.boundingBox();
@@ -307,6 +278,7 @@ CuttableCollisionMesh::findCrossings(const Blade& blade,
 
 std::vector<CuttableCollisionMesh::TriangleFeatures> CuttableCollisionMesh::collectFeatures(
   const std::unordered_map<std::uint64_t, Crossing>& crossings,
+  double snapFraction,
   CollisionCutResult& result)
 {
   // Crossings become snapped vertices or new edge points (sorted by edge
@@ -327,9 +299,9 @@ std::vector<CuttableCollisionMesh::TriangleFeatures> CuttableCollisionMesh::coll
   {
     const auto pair = trianglesOfEdge(c.a, c.b);
     candidates.insert(candidates.end(), pair.begin(), pair.end());
-    if (c.t < SnapFraction || c.t > 1.0 - SnapFraction)
+    if (c.t < snapFraction || c.t > 1.0 - snapFraction)
     {
-      const int v = c.t < SnapFraction ? c.a : c.b;
+      const int v = c.t < snapFraction ? c.a : c.b;
       if (cutVertices.insert(v).second)
       {
         candidates.insert(candidates.end(), VertexTriangles[v].begin(), VertexTriangles[v].end());
@@ -630,14 +602,13 @@ CollisionCutResult CuttableCollisionMesh::cut(const Blade& blade,
     throw InvalidInputError("cut of collision mesh '" + Name + "': snap fraction " +
                             std::to_string(settings.snapFraction) + " is not in [0, 0.5)");
   }
-  SnapFraction = settings.snapFraction;
   CollisionCutResult result;
-  const auto crossings = findCrossings(blade, current, settings);
+  const auto crossings = findCrossings(blade, current);
   if (crossings.empty())
   {
     return result;
   }
-  const auto reached = collectFeatures(crossings, result);
+  const auto reached = collectFeatures(crossings, settings.snapFraction, result);
   std::vector<int> sweepFeatures;
   for (const auto& f : reached)
   {

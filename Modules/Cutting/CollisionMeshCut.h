@@ -123,10 +123,10 @@ private:
   void removeFromAdjacency(int t);
   int addVertex(const Vector3& rest, double radius);
   std::unordered_map<std::uint64_t, Crossing> findCrossings(const Blade& blade,
-    const std::vector<Vector3>& current,
-    const CollisionCutSettings& settings) const;
+    const std::vector<Vector3>& current) const;
   std::vector<TriangleFeatures> collectFeatures(
     const std::unordered_map<std::uint64_t, Crossing>& crossings,
+    double snapFraction,
     CollisionCutResult& result);
   void splitTriangle(const TriangleFeatures& features, CollisionCutResult& result);
   void openAlongCut(CollisionCutResult& result);
@@ -141,7 +141,6 @@ private:
   std::unordered_map<std::uint64_t, std::array<int, 2>> EdgeTriangles;
   std::unordered_set<std::uint64_t> CutEdges;
   std::unordered_set<int> Tips;
-  double SnapFraction = 0.15;
 };
 
 } // namespace thintissue

@@ -1,5 +1,7 @@
 #include "HexahedronDuplication.h"
 
+#include "UnionFind.h"
+
 #include <algorithm>
 #include <numeric>
 
@@ -66,24 +68,6 @@ void insertSorted(std::vector<int>& list, int value)
 void eraseValue(std::vector<int>& list, int value)
 {
   list.erase(std::remove(list.begin(), list.end(), value), list.end());
-}
-
-int find(std::vector<int>& parent, int i)
-{
-  while (parent[i] != i)
-  {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
-void unite(std::vector<int>& parent, int i, int j)
-{
-  i = find(parent, i);
-  j = find(parent, j);
-  if (i != j)
-    parent[std::max(i, j)] = std::min(i, j);
 }
 
 } // namespace
@@ -181,8 +165,7 @@ void HexahedralBranches::splitBranches(const CuttableCollisionMesh& collision,
 {
   const std::vector<int> triangles = HexTriangles[h];
   const int n = static_cast<int>(triangles.size());
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind groups(n);
   for (int i = 0; i < n; ++i)
   {
     const Triangle& tri = collision.triangles()[triangles[i]];
@@ -193,7 +176,7 @@ void HexahedralBranches::splitBranches(const CuttableCollisionMesh& collision,
         const auto at = std::lower_bound(triangles.begin(), triangles.end(), other);
         if (other >= 0 && at != triangles.end() && *at == other)
         {
-          unite(parent, i, static_cast<int>(at - triangles.begin()));
+          groups.unite(i, static_cast<int>(at - triangles.begin()));
         }
       }
     }
@@ -201,7 +184,7 @@ void HexahedralBranches::splitBranches(const CuttableCollisionMesh& collision,
   std::vector<std::vector<int>> branches(n);
   for (int i = 0; i < n; ++i)
   {
-    branches[find(parent, i)].push_back(triangles[i]);
+    branches[groups.find(i)].push_back(triangles[i]);
   }
   branches.erase(
     std::remove_if(
@@ -241,8 +224,7 @@ void HexahedralBranches::regroupNode(int node,
 {
   const std::vector<int> around = NodeHexes[node];
   const int n = static_cast<int>(around.size());
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind groups(n);
   int firstHolding = -1;
   for (int i = 0; i < n; ++i)
   {
@@ -252,24 +234,24 @@ void HexahedralBranches::regroupNode(int node,
     for (int j = i + 1; j < n; ++j)
     {
       if (sortedIntersect(HexTriangles[around[i]], HexTriangles[around[j]]))
-        unite(parent, i, j);
+        groups.unite(i, j);
     }
   }
   // Hexahedra without collision surface stay with the first group.
   for (int i = 0; i < n; ++i)
   {
     if (HexTriangles[around[i]].empty() && firstHolding >= 0)
-      unite(parent, i, firstHolding);
+      groups.unite(i, firstHolding);
   }
   std::vector<int> groupSize(n, 0);
   for (int i = 0; i < n; ++i)
-    ++groupSize[find(parent, i)];
+    ++groupSize[groups.find(i)];
   const int keeper =
     static_cast<int>(std::max_element(groupSize.begin(), groupSize.end()) - groupSize.begin());
   std::vector<int> nodeOfGroup(n, -1);
   for (int i = 0; i < n; ++i)
   {
-    const int group = find(parent, i);
+    const int group = groups.find(i);
     if (group == keeper)
       continue;
     if (nodeOfGroup[group] < 0)

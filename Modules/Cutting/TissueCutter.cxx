@@ -43,8 +43,7 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
   const HexahedralMesh& simulation,
   CorotationalHexFem* solver,
   const TissueCutterSettings& settings)
-  : Name(collision.name)
-  , Settings(settings)
+  : Settings(settings)
   , Collision(makeCuttable(collision, settings.radiusArrayName))
   , Simulation(simulation)
   , Solver(solver)
@@ -57,7 +56,7 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
   if (Solver && (Solver->nodeCount() != Simulation.nodeCount() ||
                   Solver->hexahedronCount() != Simulation.hexahedronCount()))
   {
-    throw InvalidInputError("tissue cutter for '" + Name +
+    throw InvalidInputError("tissue cutter for '" + Collision.name() +
                             "': the solver was not made from hexahedral mesh '" + Simulation.name +
                             "'");
   }
@@ -95,7 +94,7 @@ std::vector<Vector3> TissueCutter::currentCollisionPositions() const
 TriangleMesh TissueCutter::collisionMesh() const
 {
   TriangleMesh mesh;
-  mesh.name = Name;
+  mesh.name = Collision.name();
   mesh.positions = Collision.restPositions();
   mesh.triangles = Collision.triangles();
   mesh.pointAttributes.set(Settings.radiusArrayName, 1, Collision.radii());
@@ -116,7 +115,7 @@ void TissueCutter::updateSolver(const HexahedronDuplicationResult& duplication)
     if (made != static_cast<std::size_t>(copy))
     {
       throw InvalidInputError(
-        "tissue cutter for '" + Name + "': the solver's nodes are out of step");
+        "tissue cutter for '" + Collision.name() + "': the solver's nodes are out of step");
     }
     Solver->setFixed(made, Solver->isFixed(source));
   }
@@ -132,7 +131,6 @@ void TissueCutter::updateSolver(const HexahedronDuplicationResult& duplication)
 
 std::vector<int> TissueCutter::reembedCollision(const TissueCutReport& report)
 {
-  std::vector<int> changedHexes = report.simulation.renodedHexahedra;
   const int firstNewVertex = static_cast<int>(CollisionEmbedding.pointCount());
   std::vector<Vector3> newRest;
   std::vector<int> candidates;
@@ -147,7 +145,7 @@ std::vector<int> TissueCutter::reembedCollision(const TissueCutReport& report)
   }
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  CollisionEmbedding.updateHexahedra(Simulation, changedHexes);
+  CollisionEmbedding.updateHexahedra(Simulation, report.simulation.renodedHexahedra);
   if (!newRest.empty())
   {
     CollisionEmbedding.appendPoints(newRest, Simulation, candidates);

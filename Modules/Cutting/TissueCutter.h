@@ -78,7 +78,6 @@ private:
   void updateSolver(const HexahedronDuplicationResult& duplication);
   std::vector<int> reembedCollision(const TissueCutReport& report);
 
-  std::string Name;
   TissueCutterSettings Settings;
   CuttableCollisionMesh Collision;
   HexahedralMesh Simulation;

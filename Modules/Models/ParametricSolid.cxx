@@ -1,5 +1,7 @@
 #include "ParametricSolid.h"
 
+#include "UnionFind.h"
+
 #include "ThinTissueError.h"
 
 #include <algorithm>
@@ -65,27 +67,6 @@ double openingProfile(const ParametricCrack& crack, const ParameterPoint& p)
   }
   return opening;
 }
-
-/// Union-find over at most a few dozen items.
-struct SmallUnionFind
-{
-  std::vector<int> parent;
-  explicit SmallUnionFind(std::size_t n)
-    : parent(n)
-  {
-    std::iota(parent.begin(), parent.end(), 0);
-  }
-  int find(int i)
-  {
-    while (parent[i] != i)
-    {
-      parent[i] = parent[parent[i]];
-      i = parent[i];
-    }
-    return i;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 /// A 3-D grid of parameter cells with lines on every crack.
 struct CellGrid
@@ -345,7 +326,7 @@ std::vector<NodeCopy> assignNodeCopies(const CellGrid& grid,
           }
           cellOfOctant[o] = valid ? grid.cellIndex(c[0], c[1], c[2]) : -1;
         }
-        SmallUnionFind groups(8);
+        UnionFind groups(8);
         const bool onCrack = touchesCrack(cracks, grid.nodeParameter(node));
         for (int o = 0; o < 8; ++o)
         {
@@ -686,7 +667,7 @@ TriangleMesh ParametricSolid::midSurface(int along, int across) const
           incident.push_back({ leaf, cornerOfQuadrant[quadrant], quadrant });
         }
       }
-      SmallUnionFind groups(incident.size());
+      UnionFind groups(incident.size());
       const ParameterPoint nodeParameter(lineS[i], lineU[j], 0.5);
       for (std::size_t x = 0; x < incident.size(); ++x)
       {

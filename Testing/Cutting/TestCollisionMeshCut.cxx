@@ -84,9 +84,8 @@ TEST(CollisionMeshCut, ACutThroughSeparatesTheMeshIntoTwoPieces)
   EXPECT_EQ(result.splits.size(), 8u);
   for (const auto& split : result.splits)
     EXPECT_EQ(split.children.size(), 3u) << "triangle " << split.parent;
-  // Five crossings on the vertical... on the horizontal and diagonal edges:
-  // every new edge point on the cut is duplicated except none (the cut
-  // leaves the mesh at both ends).
+  // Every edge point on the cut is duplicated once: the cut leaves the mesh
+  // at both ends, so it has no tip.
   int duplicates = 0;
   for (const auto& v : result.newVertices)
     duplicates += v.duplicateOf >= 0 ? 1 : 0;

@@ -4,6 +4,7 @@
 #include "CollisionScene.h"
 #include "KneeModels.h"
 #include "MeniscusModel.h"
+#include "SoftTissueMaterial.h"
 #include "SurgicalInstruments.h"
 #include "ThinSheetModel.h"
 #include "ThinTissueError.h"
@@ -13,18 +14,10 @@
 #include <cmath>
 
 using namespace thintissue;
+using thintissue::test::softTissue;
 
 namespace
 {
-LinearMaterial softTissue()
-{
-  LinearMaterial material; // mm, N, s
-  material.youngModulus = 0.5;
-  material.poissonRatio = 0.45;
-  material.density = 1.0e-9;
-  return material;
-}
-
 CorotationalHexFemSettings stepOf(double timeStep)
 {
   CorotationalHexFemSettings s;

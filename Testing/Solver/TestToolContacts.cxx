@@ -1,23 +1,16 @@
 // A rigid capsule tool against a deformable collision mesh with radii
 // (collision issue: detection + response through the implicit FEM).
+#include "SoftTissueMaterial.h"
 #include "ThinSheetModel.h"
 #include "ToolContacts.h"
 
 #include <gtest/gtest.h>
 
 using namespace thintissue;
+using thintissue::test::softTissue;
 
 namespace
 {
-LinearMaterial softTissue()
-{
-  LinearMaterial material; // mm, N, s
-  material.youngModulus = 0.5;
-  material.poissonRatio = 0.45;
-  material.density = 1.0e-9;
-  return material;
-}
-
 /// A vertical probe: a capsule from high above down to `tip`.
 std::vector<ToolCapsule> probeAt(const Vector3& tip, double radius)
 {

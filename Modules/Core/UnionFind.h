@@ -1,0 +1,47 @@
+// Union-find (disjoint sets) over a small index range, with path halving.
+// The root of a set is its lowest index, so that groups come out in a
+// deterministic order. Used by the branch analyses of tears and cuts.
+#ifndef UnionFind_h
+#define UnionFind_h
+
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+namespace thintissue
+{
+
+class UnionFind
+{
+public:
+  explicit UnionFind(std::size_t count)
+    : Parent(count)
+  {
+    std::iota(Parent.begin(), Parent.end(), 0);
+  }
+  int find(int i)
+  {
+    while (Parent[i] != i)
+    {
+      Parent[i] = Parent[Parent[i]];
+      i = Parent[i];
+    }
+    return i;
+  }
+  void unite(int a, int b)
+  {
+    a = find(a);
+    b = find(b);
+    if (a != b)
+    {
+      Parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+
+private:
+  std::vector<int> Parent;
+};
+
+} // namespace thintissue
+
+#endif
