@@ -427,6 +427,12 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
   }
   result.inputVertex.resize(outputVertexCount, -1);
   std::iota(result.inputVertex.begin(), result.inputVertex.begin() + vertexCount, 0);
+  result.insertedOn.reserve(inserted.size());
+  for (const InsertedVertex& vertex : inserted)
+  {
+    const PathEdge& edge = edges[vertex.edge];
+    result.insertedOn.push_back(SurfacePoint::onEdge(edge.start, edge.end, vertex.parameter));
+  }
 
   // 5. The path segments: along an edge (then the path visits every vertex
   // inserted on it in between) or a chord across a triangle.

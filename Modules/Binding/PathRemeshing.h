@@ -47,6 +47,9 @@ struct RemeshedSurface
   /// indices: vertex v < input vertex count is input vertex v), -1 for an
   /// inserted one.
   std::vector<int> inputVertex;
+  /// Per inserted vertex (vertex input vertex count + i): the input edge it
+  /// lies inside and its parameter there (SurfacePoint::onEdge form).
+  std::vector<SurfacePoint> insertedOn;
   /// Per triangle of `mesh`: the input triangle it lies in.
   std::vector<int> inputTriangle;
 };

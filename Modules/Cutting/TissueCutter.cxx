@@ -37,7 +37,34 @@ CuttableCollisionMesh makeCuttable(const TriangleMesh& collision, const std::str
     collision.name, collision.positions, collision.triangles, radius.values);
 }
 
+TriangleMesh collisionOf(const VisualCollisionBinding& binding, const std::string& radiusName)
+{
+  TriangleMesh collision;
+  collision.name = binding.visual.name + " collision";
+  collision.positions = binding.collisionPositions;
+  collision.triangles = binding.collisionTriangles;
+  collision.pointAttributes.set(radiusName, 1, binding.collisionRadii);
+  return collision;
+}
+
 } // namespace
+
+TissueCutter::TissueCutter(const VisualCollisionBinding& binding,
+  const HexahedralMesh& simulation,
+  CorotationalHexFem* solver,
+  const TissueCutterSettings& settings)
+  : TissueCutter(collisionOf(binding, settings.radiusArrayName), simulation, solver, settings)
+{
+  Visual = CuttableVisualMesh(binding, settings.visual);
+  HasVisual = true;
+  VisualEmbedding.embed(Simulation, Visual.mesh().positions);
+  VisualOfHexahedron.resize(Simulation.hexahedronCount());
+  for (int v = 0; v < static_cast<int>(Visual.mesh().vertexCount()); ++v)
+  {
+    moveToBranchCopy(v);
+    VisualOfHexahedron[Branches.originalOf(VisualEmbedding.hexahedron(v))].push_back(v);
+  }
+}
 
 TissueCutter::TissueCutter(const TriangleMesh& collision,
   const HexahedralMesh& simulation,
@@ -82,6 +109,14 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
       CollisionEmbedding.setPoint(v, holder, CollisionEmbedding.localCoordinates(v));
     }
   }
+}
+
+std::vector<Vector3> TissueCutter::currentVisualPositions() const
+{
+  std::vector<Vector3> positions;
+  if (HasVisual)
+    VisualEmbedding.mapPositions(Solver ? Solver->positions() : Simulation.nodes, positions);
+  return positions;
 }
 
 std::vector<Vector3> TissueCutter::currentCollisionPositions() const
@@ -185,6 +220,71 @@ std::vector<int> TissueCutter::reembedCollision(const TissueCutReport& report)
   return moved;
 }
 
+/// 5.3.5: a visual vertex goes to the copy of its hexahedron that holds
+/// its collision triangle (or, failing that, a triangle around it).
+bool TissueCutter::moveToBranchCopy(int v)
+{
+  const int h = VisualEmbedding.hexahedron(v);
+  const int triangle = Visual.collisionTriangleOf(v, Collision);
+  if (triangle < 0)
+    return false;
+  int holder = Branches.copyHolding(h, { triangle });
+  if (holder < 0)
+  {
+    std::vector<int> around;
+    for (int corner : Collision.triangles()[triangle])
+      around.insert(around.end(),
+        Collision.trianglesOfVertex(corner).begin(),
+        Collision.trianglesOfVertex(corner).end());
+    holder = Branches.copyHolding(h, around);
+  }
+  if (holder < 0 || holder == h)
+    return false;
+  VisualEmbedding.setPoint(v, holder, VisualEmbedding.localCoordinates(v));
+  return true;
+}
+
+std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
+{
+  VisualEmbedding.updateHexahedra(Simulation, report.simulation.renodedHexahedra);
+  VisualOfHexahedron.resize(Simulation.hexahedronCount());
+  const int firstNew = static_cast<int>(VisualEmbedding.pointCount());
+  const auto& rest = Visual.mesh().positions;
+  if (static_cast<int>(rest.size()) > firstNew)
+  {
+    std::vector<int> candidates;
+    for (int v = firstNew; v < static_cast<int>(rest.size()); ++v)
+    {
+      const int t = Visual.collisionTriangleOf(v, Collision);
+      if (t >= 0)
+        candidates.insert(
+          candidates.end(), Branches.hexahedraOf(t).begin(), Branches.hexahedraOf(t).end());
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    VisualEmbedding.appendPoints(
+      std::vector<Vector3>(rest.begin() + firstNew, rest.end()), Simulation, candidates);
+    for (int v = firstNew; v < static_cast<int>(rest.size()); ++v)
+      VisualOfHexahedron[Branches.originalOf(VisualEmbedding.hexahedron(v))].push_back(v);
+  }
+  // The vertices of touched hexahedra and those rebound by the cut.
+  std::vector<int> vertices = report.visual.reboundVertices;
+  for (int h : report.simulation.touchedHexahedra)
+  {
+    const auto& inside = VisualOfHexahedron[Branches.originalOf(h)];
+    vertices.insert(vertices.end(), inside.begin(), inside.end());
+  }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  std::vector<int> moved;
+  for (int v : vertices)
+  {
+    if (moveToBranchCopy(v) || v >= firstNew)
+      moved.push_back(v);
+  }
+  return moved;
+}
+
 TissueCutReport TissueCutter::cut(const Blade& blade)
 {
   const auto start = Clock::now();
@@ -204,6 +304,15 @@ TissueCutReport TissueCutter::cut(const Blade& blade)
   const auto embeddingStart = Clock::now();
   report.reembeddedCollisionVertices = reembedCollision(report);
   report.embeddingMilliseconds = millisecondsSince(embeddingStart);
+  if (HasVisual && report.changed())
+  {
+    const auto visualStart = Clock::now();
+    report.visual = Visual.cut(Collision, report.collision);
+    report.visualMilliseconds = millisecondsSince(visualStart);
+    const auto reembedStart = Clock::now();
+    report.reembeddedVisualVertices = reembedVisual(report);
+    report.visualEmbeddingMilliseconds = millisecondsSince(reembedStart);
+  }
   report.totalMilliseconds = millisecondsSince(start);
   return report;
 }

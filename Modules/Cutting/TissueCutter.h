@@ -8,13 +8,17 @@
 // branch analysis (HexahedralBranches), the solver updated for what changed
 // only (new nodes, copied elements with their rest state, re-noded
 // elements), and the collision vertices re-embedded in the copy holding
-// their branch.
+// their branch. Made from a binding, it cuts the visual mesh too (5.3.2 -
+// 5.3.4, CuttableVisualMesh) and re-embeds the visual vertices whose
+// hexahedron or binding changed in the copy holding their collision
+// triangle (5.3.5).
 #ifndef TissueCutter_h
 #define TissueCutter_h
 
 #include "CollisionMeshCut.h"
 #include "HexahedralEmbedding.h"
 #include "HexahedronDuplication.h"
+#include "VisualMeshCut.h"
 #include "ThinTissueCuttingModule.h"
 
 namespace thintissue
@@ -26,6 +30,8 @@ struct TissueCutterSettings
 {
   CollisionCutSettings collision;
   std::string radiusArrayName = "Radius";
+  /// Used when the cutter is made from a binding.
+  VisualCutSettings visual;
 };
 
 /// What one cut did, and what it cost.
@@ -35,11 +41,19 @@ struct TissueCutReport
   HexahedronDuplicationResult simulation;
   /// Collision vertices whose embedding changed (new ones included).
   std::vector<int> reembeddedCollisionVertices;
+  /// The visual cut (empty without a visual mesh) and the visual vertices
+  /// whose embedding changed (new ones included).
+  VisualCutResult visual;
+  std::vector<int> reembeddedVisualVertices;
   /// Milliseconds: blade test and collision re-meshing; hexahedron
   /// duplication and solver update; embedding updates; the whole cut.
   double collisionMilliseconds = 0.0;
   double simulationMilliseconds = 0.0;
   double embeddingMilliseconds = 0.0;
+  /// Visual cut, binding update and cut surface (5.3.2 - 5.3.4); visual
+  /// re-embedding (5.3.5).
+  double visualMilliseconds = 0.0;
+  double visualEmbeddingMilliseconds = 0.0;
   double totalMilliseconds = 0.0;
   bool changed() const { return collision.changed(); }
 };
@@ -53,6 +67,13 @@ public:
   /// cut and its positions drive the blade test. Throws InvalidInputError
   /// naming the mesh on bad input.
   TissueCutter(const TriangleMesh& collision,
+    const HexahedralMesh& simulation,
+    CorotationalHexFem* solver = nullptr,
+    const TissueCutterSettings& settings = {});
+
+  /// A cutter that cuts the bound visual mesh too: the collision mesh is
+  /// the binding's (rest positions, triangles, radii).
+  TissueCutter(const VisualCollisionBinding& binding,
     const HexahedralMesh& simulation,
     CorotationalHexFem* solver = nullptr,
     const TissueCutterSettings& settings = {});
@@ -74,9 +95,19 @@ public:
   /// The collision mesh as a TriangleMesh with its radius array.
   TriangleMesh collisionMesh() const;
 
+  bool hasVisual() const { return HasVisual; }
+  /// The visual mesh with its cut surfaces (rest) and bindings; empty
+  /// without a binding.
+  const CuttableVisualMesh& visual() const { return Visual; }
+  const HexahedralEmbedding& visualEmbedding() const { return VisualEmbedding; }
+  /// Visual vertex positions from the solver's (or the rest) node positions.
+  std::vector<Vector3> currentVisualPositions() const;
+
 private:
   void updateSolver(const HexahedronDuplicationResult& duplication);
   std::vector<int> reembedCollision(const TissueCutReport& report);
+  std::vector<int> reembedVisual(const TissueCutReport& report);
+  bool moveToBranchCopy(int visualVertex);
 
   TissueCutterSettings Settings;
   CuttableCollisionMesh Collision;
@@ -85,6 +116,11 @@ private:
   HexahedralEmbedding CollisionEmbedding;
   HexahedronDuplicationResult InitialSeparation;
   CorotationalHexFem* Solver = nullptr;
+  bool HasVisual = false;
+  CuttableVisualMesh Visual;
+  HexahedralEmbedding VisualEmbedding;
+  /// Per original hexahedron: the visual vertices embedded in it or a copy.
+  std::vector<std::vector<int>> VisualOfHexahedron;
 };
 
 } // namespace thintissue

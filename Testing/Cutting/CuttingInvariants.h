@@ -3,7 +3,9 @@
 #define CuttingInvariants_h
 
 #include "CollisionMeshCut.h"
+#include "MeshValidation.h"
 #include "TissueCutter.h"
+#include "VisualMeshCut.h"
 
 #include <gtest/gtest.h>
 
@@ -116,6 +118,157 @@ inline std::vector<int> collisionPieces(const CuttableCollisionMesh& mesh, int& 
   return piece;
 }
 
+/// Visual mesh after cuts (5.3.2 - 5.3.4): closed, manifold, consistently
+/// oriented, every vertex used, no triangle of zero area but slivers of the
+/// cut surface; every vertex bound to a live collision
+/// vertex, edge or triangle with parameters in [0, 1] summing to 1; every
+/// surface triangle's corners bound inside its region's collision triangle,
+/// every cut-surface triangle's corners on its collision edge or its ends;
+/// as many visual pieces as collision pieces.
+inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& visual,
+  const CuttableCollisionMesh& collision)
+{
+  const TriangleMesh& mesh = visual.mesh();
+  const MeshValidationReport report = validateTriangleMesh(mesh, 0.0);
+  // The cut surface may hold slivers of no area where both sides' paths
+  // run down the same rim wall (the thesis accepts ill-shaped cut-surface
+  // triangles); the tissue's own surface may not, and no triangle may
+  // repeat a vertex.
+  std::size_t surfaceSlivers = 0;
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    const Triangle& tri = mesh.triangles[t];
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+      return ::testing::AssertionFailure() << "visual triangle " << t << " repeats a vertex";
+    if (mesh.triangleArea(t) <= 0.0 && visual.triangleMaterials()[t] == VisualMaterial::Surface)
+      ++surfaceSlivers;
+  }
+  const bool closed = report.nonManifoldEdges.count == 0 &&
+                      report.nonManifoldVertices.count == 0 && report.borderEdges.count == 0 &&
+                      report.inconsistentlyOrientedEdges.count == 0 &&
+                      report.duplicateTriangles.count == 0 && surfaceSlivers == 0;
+  if (!closed || report.unreferencedVertices.count > 0)
+  {
+    auto failure = ::testing::AssertionFailure() << "visual mesh is not a closed manifold:\n"
+                                                 << report.toString();
+    std::map<std::pair<int, int>, std::vector<int>> edgeTriangles;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+        edgeTriangles[{ std::min(a, b), std::max(a, b) }].push_back(static_cast<int>(t));
+      }
+    for (const auto& [edge, triangles] : edgeTriangles)
+    {
+      if (triangles.size() == 2)
+        continue;
+      failure << "\nedge " << edge.first << "-" << edge.second << ":";
+      for (int t : triangles)
+        failure << " triangle " << t << " (" << mesh.triangles[t][0] << " " << mesh.triangles[t][1]
+                << " " << mesh.triangles[t][2] << ", material " << int(visual.triangleMaterials()[t])
+                << ", region " << visual.triangleRegions()[t] << " = ("
+                << collision.triangles()[visual.triangleRegions()[t]][0] << " "
+                << collision.triangles()[visual.triangleRegions()[t]][1] << " "
+                << collision.triangles()[visual.triangleRegions()[t]][2] << "), side "
+                << int(visual.triangleSides()[t]) << ")";
+      break;
+    }
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+      if (mesh.triangleArea(t) > 0.0 || visual.triangleMaterials()[t] != VisualMaterial::Surface)
+        continue;
+      failure << "\nzero-area triangle " << t << " (material "
+              << int(visual.triangleMaterials()[t]) << ", region " << visual.triangleRegions()[t]
+              << ", side " << int(visual.triangleSides()[t]) << "):";
+      for (int v : mesh.triangles[t])
+      {
+        const VisualVertexBinding& b = visual.bindings()[v];
+        failure << " " << v << " [kind " << int(b.kind) << " element " << b.element << " side "
+                << b.side << " t " << b.parameters.transpose() << " at "
+                << mesh.positions[v].transpose() << "]";
+      }
+      break;
+    }
+    return failure;
+  }
+  const auto& edges = visual.collisionEdges();
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+  {
+    const VisualVertexBinding& b = visual.bindings()[v];
+    bool alive = false;
+    if (b.kind == BindingKind::CollisionVertex)
+      alive = b.element >= 0 && b.element < static_cast<int>(collision.vertexCount()) &&
+              !collision.trianglesOfVertex(b.element).empty();
+    else if (b.kind == BindingKind::CollisionEdge)
+      alive = b.element >= 0 && b.element < static_cast<int>(edges.size()) &&
+              collision.trianglesOfEdge(edges[b.element][0], edges[b.element][1])[0] >= 0;
+    else
+      alive = b.element >= 0 && b.element < static_cast<int>(collision.triangleCount());
+    if (!alive)
+      return ::testing::AssertionFailure()
+             << "visual vertex " << v << " is bound to a dead element " << b.element << " (kind "
+             << static_cast<int>(b.kind) << ")";
+    if (b.parameters.minCoeff() < -1e-9 || b.parameters.maxCoeff() > 1.0 + 1e-9 ||
+        std::abs(b.parameters.sum() - 1.0) > 1e-9)
+      return ::testing::AssertionFailure() << "visual vertex " << v << " has parameters "
+                                           << b.parameters.transpose();
+  }
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    const int region = visual.triangleRegions()[t];
+    if (region < 0 || region >= static_cast<int>(collision.triangleCount()))
+      return ::testing::AssertionFailure() << "visual triangle " << t << " has no region";
+    for (int v : mesh.triangles[t])
+    {
+      try
+      {
+        visual.parametersIn(v, region, collision.triangles()[region]);
+      }
+      catch (const Error& e)
+      {
+        return ::testing::AssertionFailure()
+               << "visual triangle " << t << " (side " << int(visual.triangleSides()[t])
+               << "): " << e.what();
+      }
+    }
+  }
+  int collisionPieceCount = 0;
+  collisionPieces(collision, collisionPieceCount);
+  if (static_cast<int>(report.connectedComponents) != collisionPieceCount)
+    return ::testing::AssertionFailure() << report.connectedComponents << " visual pieces for "
+                                         << collisionPieceCount << " collision pieces";
+  return ::testing::AssertionSuccess();
+}
+
+/// Visual mesh of a cutter (5.3.5): valid (visualMeshIsValid), embedded
+/// point for point, and every visual vertex in a hexahedron whose nodes
+/// belong to the collision piece of its own collision triangle (a visual
+/// piece never hangs on the nodes of another piece).
+inline ::testing::AssertionResult visualFollowsTheCut(const TissueCutter& cutter,
+  const std::vector<int>& pieceOf,
+  const std::map<int, int>& pieceOfNode)
+{
+  const auto valid = visualMeshIsValid(cutter.visual(), cutter.collision());
+  if (!valid)
+    return valid;
+  const auto& embedding = cutter.visualEmbedding();
+  if (embedding.pointCount() != cutter.visual().mesh().vertexCount())
+    return ::testing::AssertionFailure() << "visual embedding has a wrong point count";
+  for (std::size_t v = 0; v < embedding.pointCount(); ++v)
+  {
+    const int t = cutter.visual().collisionTriangleOf(static_cast<int>(v), cutter.collision());
+    for (int node : cutter.simulation().hexahedra[embedding.hexahedron(v)])
+    {
+      const auto found = pieceOfNode.find(node);
+      if (found != pieceOfNode.end() && found->second != pieceOf[t])
+        return ::testing::AssertionFailure()
+               << "visual vertex " << v << " (collision piece " << pieceOf[t]
+               << ") hangs on node " << node << " of piece " << found->second;
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
 /// Cutter: the collision mesh is valid; every hexahedron (copies too) has
 /// its original's rest geometry; pieces of the collision mesh that share no
 /// triangle share no node; every collision vertex is embedded in a copy
@@ -174,8 +327,10 @@ inline ::testing::AssertionResult cutterIsConsistent(const TissueCutter& cutter,
                << "collision vertex " << v << " is embedded in a copy without its triangles";
     }
   }
-  return ::testing::AssertionSuccess();
+  return cutter.hasVisual() ? visualFollowsTheCut(cutter, pieceOf, pieceOfNode)
+                            : ::testing::AssertionSuccess();
 }
+
 
 } // namespace cutting_test
 } // namespace thintissue

@@ -1,0 +1,510 @@
+// 5.3.3: the visual-collision binding after a cut, and the visual mesh
+// opened where the collision mesh opened.
+#include "VisualMeshCut.h"
+#include "VisualMeshCutPrivate.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <limits>
+
+namespace thintissue
+{
+
+namespace
+{
+
+/// Formula 5-2: the piece of a split triangle holding parent parameters x,
+/// and x's parameters in it; the piece where the smallest is largest.
+int pieceHolding(const std::vector<Eigen::Matrix3d>& inverses, const Vector3& x, Vector3& inPiece)
+{
+  int best = -1;
+  double bestMinimum = -std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < inverses.size(); ++c)
+  {
+    const Vector3 y = (x.transpose() * inverses[c]).transpose();
+    if (y.minCoeff() > bestMinimum)
+    {
+      bestMinimum = y.minCoeff();
+      best = static_cast<int>(c);
+      inPiece = y;
+    }
+  }
+  inPiece = inPiece.cwiseMax(0.0);
+  inPiece /= inPiece.sum();
+  return best;
+}
+
+double alongSegment(const Vector3& x, const Vector3& from, const Vector3& to)
+{
+  const Vector3 d = to - from;
+  return std::clamp((x - from).dot(d) / d.squaredNorm(), 0.0, 1.0);
+}
+
+} // namespace
+
+void CuttableVisualMesh::rebindSplitRegions(CutContext& context)
+{
+  for (RegionCut& region : context.regions)
+  {
+    const std::unordered_map<int, char> onCut = bindCrossingVertices(region, context);
+    assignPieces(region, onCut, context);
+  }
+}
+
+// A vertex on a traced cut is bound to its collision edge by its parameter
+// along the straight 2D cut. Two cuts from one collision vertex at a very
+// small angle may share their first visual vertices: those are bound to
+// that collision vertex.
+std::unordered_map<int, char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region,
+  CutContext& context)
+{
+  const int side = region.side > 0 ? 1 : -1;
+  std::unordered_map<int, std::vector<int>> crossingsOf;
+  for (std::size_t c = 0; c < region.crossings.size(); ++c)
+  {
+    const auto& vertices = region.crossings[c].vertices;
+    for (std::size_t i = 1; i + 1 < vertices.size(); ++i)
+      crossingsOf[vertices[i]].push_back(static_cast<int>(c));
+  }
+  std::unordered_map<int, char> onCut;
+  for (const auto& [w, crossings] : crossingsOf)
+  {
+    const CrossingPath& first = region.crossings[crossings.front()];
+    if (crossings.size() == 1)
+    {
+      const double s =
+        alongSegment(region.parameters.at(w), first.barycentric[0], first.barycentric[1]);
+      bindToEdge(w, first.ends[0], first.ends[1], s, side);
+    }
+    else
+    {
+      int common = -1;
+      for (int end : first.ends)
+      {
+        bool shared = true;
+        for (int c : crossings)
+          shared = shared && std::find(region.crossings[c].ends.begin(),
+                               region.crossings[c].ends.end(),
+                               end) != region.crossings[c].ends.end();
+        common = shared ? end : common;
+      }
+      if (common < 0)
+      {
+        throw Error("visual cut of '" + Mesh.name + "': visual vertex " + std::to_string(w) +
+                    " lies on two cuts that share no collision vertex");
+      }
+      VisualVertexBinding& b = Bindings[w];
+      b.kind = BindingKind::CollisionVertex;
+      b.element = common;
+      b.side = side;
+      b.parameters = Vector3(1.0, 0.0, 0.0);
+    }
+    onCut[w] = 1;
+    context.rebound.push_back(w);
+  }
+  for (const CrossingPath& crossing : region.crossings)
+  {
+    for (int end = 0; end < 2; ++end)
+    {
+      const auto found = context.edgePointOf.find(crossing.ends[end]);
+      if (found != context.edgePointOf.end())
+      {
+        context.edgePoints[found->second].visualVertex[region.side] =
+          end == 0 ? crossing.vertices.front() : crossing.vertices.back();
+      }
+    }
+  }
+  return onCut;
+}
+
+// The region's triangles fall into pieces separated by the traced cuts;
+// each piece goes to the collision piece most of its triangles lie in, and
+// its inner vertices are rebound there by formula 5-2. Deciding per piece,
+// not per triangle, keeps a vertex and all its triangles in one region
+// where the parameterisation folds.
+void CuttableVisualMesh::assignPieces(RegionCut& region,
+  const std::unordered_map<int, char>& onCut,
+  CutContext& context)
+{
+  const CollisionTriangleSplit& split = context.cut->splits[region.split];
+  const int side = region.side > 0 ? 1 : -1;
+  std::vector<Eigen::Matrix3d> inverses;
+  for (const auto& corners : split.childCorners)
+  {
+    Eigen::Matrix3d m;
+    for (int k = 0; k < 3; ++k)
+      m.row(k) = corners[k].transpose();
+    inverses.push_back(m.inverse());
+  }
+  std::unordered_map<std::uint64_t, char> onCutEdge;
+  for (const CrossingPath& crossing : region.crossings)
+    for (std::size_t i = 0; i + 1 < crossing.vertices.size(); ++i)
+      onCutEdge[edgeKey(crossing.vertices[i], crossing.vertices[i + 1])] = 1;
+  std::unordered_map<std::uint64_t, std::vector<int>> trianglesOfEdge;
+  for (std::size_t i = 0; i < region.newTriangles.size(); ++i)
+  {
+    const Triangle& tri = Mesh.triangles[region.newTriangles[i]];
+    for (int k = 0; k < 3; ++k)
+      trianglesOfEdge[edgeKey(tri[k], tri[(k + 1) % 3])].push_back(static_cast<int>(i));
+  }
+  std::vector<int> piece(region.newTriangles.size(), -1);
+  Vector3 inPiece;
+  for (std::size_t seed = 0; seed < piece.size(); ++seed)
+  {
+    if (piece[seed] >= 0)
+      continue;
+    std::vector<int> members{ static_cast<int>(seed) };
+    piece[seed] = static_cast<int>(seed);
+    std::vector<int> votes(split.children.size(), 0);
+    for (std::size_t m = 0; m < members.size(); ++m)
+    {
+      const Triangle& tri = Mesh.triangles[region.newTriangles[members[m]]];
+      Vector3 centroid = Vector3::Zero();
+      for (int v : tri)
+        centroid += region.parameters.at(v) / 3.0;
+      ++votes[pieceHolding(inverses, centroid, inPiece)];
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::uint64_t key = edgeKey(tri[k], tri[(k + 1) % 3]);
+        if (onCutEdge.count(key))
+          continue;
+        for (int other : trianglesOfEdge[key])
+          if (piece[other] < 0)
+          {
+            piece[other] = static_cast<int>(seed);
+            members.push_back(other);
+          }
+      }
+    }
+    const int c =
+      static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+    const int child = split.children[c];
+    for (int m : members)
+    {
+      const int t = region.newTriangles[m];
+      TriangleRegion[t] = child;
+      TriangleSide[t] = static_cast<std::int8_t>(side);
+      Regions[child][region.side].push_back(t);
+      for (int v : Mesh.triangles[t])
+      {
+        VisualVertexBinding& b = Bindings[v];
+        if (b.kind != BindingKind::CollisionTriangle || b.element != split.parent ||
+            onCut.count(v))
+          continue;
+        const Vector3 y = (region.parameters.at(v).transpose() * inverses[c]).transpose();
+        b.element = child;
+        b.parameters = y.cwiseMax(0.0) / y.cwiseMax(0.0).sum();
+        context.rebound.push_back(v);
+      }
+    }
+  }
+}
+
+// The visual vertex of each new collision vertex inside an edge, and the
+// edge's paths split there (accumulated-length parameters rescaled).
+void CuttableVisualMesh::finishEdgePoints(CutContext& context)
+{
+  Paired.resize(context.collision->vertexCount(), { { -1, -1 } });
+  for (EdgePoint& point : context.edgePoints)
+  {
+    EdgePaths& paths = Paths.at(edgeKey(point.a, point.b));
+    for (int side = 0; side < 2; ++side)
+    {
+      if (point.visualVertex[side] < 0 && point.visual[side].isVertex())
+        point.visualVertex[side] = point.visual[side].vertex;
+      if (point.rim && point.visualVertex[side] < 0)
+        point.visualVertex[side] = point.visualVertex[1 - side];
+      if (point.visualVertex[side] < 0)
+      {
+        throw Error("visual cut of '" + Mesh.name + "': no visual vertex for collision vertex " +
+                    std::to_string(point.vertex) + " on side " + std::to_string(side));
+      }
+    }
+    for (int side = 0; side < 2; ++side)
+    {
+      const int w = point.visualVertex[side];
+      Paired[point.vertex][side] = w;
+      VisualVertexBinding& b = Bindings[w];
+      b.kind = BindingKind::CollisionVertex;
+      b.element = point.vertex;
+      b.side = point.rim ? 0 : (side > 0 ? 1 : -1);
+      b.parameters = Vector3(1.0, 0.0, 0.0);
+      context.rebound.push_back(w);
+    }
+    EdgePaths before, after;
+    before.rim = after.rim = point.rim;
+    for (int side = 0; side < 2; ++side)
+    {
+      std::vector<int> p = paths.sides[side];
+      const int w = point.visualVertex[side];
+      const std::size_t i = static_cast<std::size_t>(point.pathPosition[side]);
+      std::size_t at = i + 1;
+      if (p[i] == w)
+        at = i;
+      else if (p[i + 1] != w)
+        p.insert(p.begin() + static_cast<std::ptrdiff_t>(i + 1), w);
+      if (side == 1 && point.rim)
+      {
+        before.sides[1] = before.sides[0];
+        after.sides[1] = after.sides[0];
+        break;
+      }
+      before.sides[side].assign(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(at) + 1);
+      after.sides[side].assign(p.rbegin(), p.rend() - static_cast<std::ptrdiff_t>(at));
+      for (std::size_t j = 1; j < at; ++j)
+      {
+        const int v = p[j];
+        bindToEdge(v, point.a, point.vertex, edgeParameter(v, point.a, point.b) / point.u,
+          Bindings[v].side);
+        context.rebound.push_back(v);
+      }
+      for (std::size_t j = at + 1; j + 1 < p.size(); ++j)
+      {
+        const int v = p[j];
+        const double t = (edgeParameter(v, point.a, point.b) - point.u) / (1.0 - point.u);
+        bindToEdge(v, point.vertex, point.b, t, Bindings[v].side);
+        context.rebound.push_back(v);
+      }
+    }
+    if (Strips.count(edgeKey(point.a, point.b)))
+      splitStrip(edgeKey(point.a, point.b), point.a, point.b, point.vertex, point.u, context);
+    Paths.erase(edgeKey(point.a, point.b));
+    Paths[edgeKey(point.a, point.vertex)] = std::move(before);
+    Paths[edgeKey(point.b, point.vertex)] = std::move(after);
+  }
+  // The traced cuts are the paths of the new edges across the pieces.
+  for (const RegionCut& region : context.regions)
+  {
+    for (const CrossingPath& crossing : region.crossings)
+    {
+      EdgePaths& paths = Paths[edgeKey(crossing.ends[0], crossing.ends[1])];
+      paths.sides[region.side] = crossing.vertices;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+// Where the collision mesh opened, the visual vertices bound to an opened
+// collision vertex or edge get one copy per side of the opening.
+void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision,
+  CutContext& context)
+{
+  struct Claim
+  {
+    int triangle;
+    int corner;
+    int vertex;
+    int element;  ///< collision vertex, or edge (x, y) in `edge`
+    std::array<int, 2> edge;
+  };
+  std::vector<Claim> claims;
+  const auto& collisionTriangles = collision.triangles();
+  for (int T : context.cut->changedTriangles)
+  {
+    const Triangle& tri = collisionTriangles[T];
+    for (int side = 0; side < 2; ++side)
+    {
+      for (int t : Regions[T][side])
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          const int v = Mesh.triangles[t][k];
+          const VisualVertexBinding& b = Bindings[v];
+          if (b.kind == BindingKind::CollisionVertex)
+          {
+            if (std::find(tri.begin(), tri.end(), b.element) != tri.end())
+              continue;
+            for (int x : tri)
+              if (context.root(x) == b.element)
+                claims.push_back({ t, k, v, x, { { -1, -1 } } });
+          }
+          else if (b.kind == BindingKind::CollisionEdge)
+          {
+            const auto& e = Edges[b.element];
+            const bool has0 = std::find(tri.begin(), tri.end(), e[0]) != tri.end();
+            const bool has1 = std::find(tri.begin(), tri.end(), e[1]) != tri.end();
+            if (has0 && has1)
+              continue;
+            for (int j = 0; j < 3; ++j)
+            {
+              const int x = tri[j], y = tri[(j + 1) % 3];
+              if (edgeKey(context.root(x), context.root(y)) == edgeKey(e[0], e[1]))
+                claims.push_back({ t, k, v, -1, { { x, y } } });
+            }
+          }
+        }
+      }
+    }
+  }
+  std::sort(claims.begin(),
+    claims.end(),
+    [](const Claim& p, const Claim& q) { return p.vertex < q.vertex; });
+  for (std::size_t i = 0; i < claims.size();)
+  {
+    std::size_t j = i;
+    const int v = claims[i].vertex;
+    const VisualVertexBinding original = Bindings[v];
+    bool rootAlive = false;
+    if (original.kind == BindingKind::CollisionVertex)
+      rootAlive = !collision.trianglesOfVertex(original.element).empty();
+    else
+    {
+      const auto& e = Edges[original.element];
+      rootAlive = collision.trianglesOfEdge(e[0], e[1])[0] >= 0;
+    }
+    for (; j < claims.size() && claims[j].vertex == v; ++j)
+    {
+      const Claim& claim = claims[j];
+      const int code = claim.element >= 0
+                         ? 2 * claim.element
+                         : 2 * edgeIndex(claim.edge[0], claim.edge[1]) + 1;
+      auto [it, added] = context.copies.emplace(std::make_pair(v, code), -1);
+      if (added)
+      {
+        it->second = rootAlive ? addVertexCopy(v) : v;
+        rootAlive = true; // the vertex itself serves the first claim at most
+        const int w = it->second;
+        if (w != v)
+          context.newVertices.push_back(w);
+        context.rebound.push_back(w);
+        VisualVertexBinding& b = Bindings[w];
+        if (claim.element >= 0)
+        {
+          b.element = claim.element;
+          const int sideIndex = b.side > 0 ? 1 : 0;
+          Paired[claim.element][sideIndex] = w;
+          if (b.side == 0)
+            Paired[claim.element][1 - sideIndex] = w;
+        }
+        else
+        {
+          const auto& e = Edges[original.element];
+          const int x = claim.edge[0], y = claim.edge[1];
+          const double t = original.parameters[1]; // from e[0]
+          const double fromX = context.root(x) == e[0] ? t : 1.0 - t;
+          bindToEdge(w, x, y, fromX, original.side);
+        }
+      }
+      Mesh.triangles[claim.triangle][claim.corner] = it->second;
+      context.changedTriangles.push_back(claim.triangle);
+    }
+    i = j;
+  }
+}
+
+// The paths of the edges the opening made: the paths they were copied
+// from, through the vertex copies; strips move with their edge.
+void CuttableVisualMesh::updateEdgePaths(const CuttableCollisionMesh& collision,
+  CutContext& context)
+{
+  std::vector<std::uint64_t> gone;
+  for (int T : context.cut->changedTriangles)
+  {
+    const Triangle& tri = collision.triangles()[T];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int x = tri[k], y = tri[(k + 1) % 3];
+      const std::uint64_t key = edgeKey(x, y);
+      if (Paths.count(key))
+        continue;
+      const int rx = context.root(x), ry = context.root(y);
+      const std::uint64_t rootKey = edgeKey(rx, ry);
+      const auto found = Paths.find(rootKey);
+      if (found == Paths.end())
+      {
+        throw Error("visual cut of '" + Mesh.name + "': collision edge (" + std::to_string(x) +
+                    ", " + std::to_string(y) + ") has no visual path");
+      }
+      const int edgeCode = 2 * edgeIndex(x, y) + 1;
+      auto mapped = [&](int w)
+      {
+        const VisualVertexBinding& b = Bindings[w];
+        int code = edgeCode;
+        if (b.kind == BindingKind::CollisionVertex)
+        {
+          const int r = context.root(b.element);
+          code = 2 * (r == rx ? x : (r == ry ? y : b.element));
+        }
+        const auto copy = context.copies.find({ w, code });
+        return copy == context.copies.end() ? w : copy->second;
+      };
+      EdgePaths paths;
+      paths.rim = found->second.rim;
+      const bool reverse = (rx < ry) != (x < y);
+      for (int side = 0; side < 2; ++side)
+      {
+        for (int w : found->second.sides[side])
+          paths.sides[side].push_back(mapped(w));
+        if (reverse)
+          std::reverse(paths.sides[side].begin(), paths.sides[side].end());
+      }
+      const bool rootAlive = collision.trianglesOfEdge(rx, ry)[0] >= 0;
+      if (!rootAlive)
+      {
+        gone.push_back(rootKey);
+        const auto strip = Strips.find(rootKey);
+        if (strip != Strips.end())
+        {
+          for (auto& row : strip->second.rows)
+          {
+            for (int w : row)
+              bindToEdge(w, x, y, edgeParameter(w, rx, ry), 0);
+            if (reverse)
+              std::reverse(row.begin(), row.end());
+          }
+          Strips[key] = std::move(strip->second);
+          Strips.erase(rootKey);
+        }
+      }
+      Paths[key] = std::move(paths);
+    }
+  }
+  for (std::uint64_t key : gone)
+    Paths.erase(key);
+}
+
+//------------------------------------------------------------------------------
+VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
+  const CollisionCutResult& cut)
+{
+  VisualCutResult result;
+  if (!cut.changed())
+    return result;
+  CutContext context;
+  context.collision = &collision;
+  context.cut = &cut;
+  for (const NewCollisionVertex& made : cut.newVertices)
+  {
+    if (made.duplicateOf >= 0)
+      context.originalOf.emplace(made.vertex, made.duplicateOf);
+  }
+  Regions.resize(collision.triangleCount());
+  splitEdgePaths(context);
+  traceRegionCuts(context);
+  remeshRegions(context);
+  rebindSplitRegions(context);
+  finishEdgePoints(context);
+  openVisualMesh(collision, context);
+  updateEdgePaths(collision, context);
+  updateCutSurface(collision, context);
+  compactTriangles();
+  auto sorted = [](std::vector<int> list)
+  {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    return list;
+  };
+  result.newVertices = sorted(std::move(context.newVertices));
+  result.reboundVertices = sorted(std::move(context.rebound));
+  result.reboundVertices.insert(
+    result.reboundVertices.end(), result.newVertices.begin(), result.newVertices.end());
+  result.reboundVertices = sorted(std::move(result.reboundVertices));
+  result.changedTriangles = sorted(std::move(context.changedTriangles));
+  while (!result.changedTriangles.empty() &&
+         result.changedTriangles.back() >= static_cast<int>(Mesh.triangleCount()))
+    result.changedTriangles.pop_back();
+  return result;
+}
+
+} // namespace thintissue

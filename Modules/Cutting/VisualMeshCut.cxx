@@ -1,0 +1,774 @@
+#include "VisualMeshCut.h"
+
+#include "PathRemeshing.h"
+#include "VisualMeshCutPrivate.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <cstdio>
+#include <cstdlib>
+
+namespace thintissue
+{
+
+namespace
+{
+
+constexpr double OnLineTolerance = 1e-7; ///< of the triangle's longest side
+constexpr double CutEndMargin = 1e-7;    ///< of the cut's length
+constexpr double PathSnap = 0.05; ///< of a visual edge: a cut this near a path vertex goes through it
+constexpr double BorderClearance = 1e-6; ///< of a visual edge, off the border
+
+/// The region triangles as a mesh of their own, with the maps back.
+struct LocalMesh
+{
+  TriangleMesh mesh;
+  std::vector<int> globalVertex;
+  std::vector<int> globalTexture;
+  std::vector<int> globalTriangle;
+  std::unordered_map<int, int> localVertex;
+};
+
+LocalMesh extractTriangles(const TriangleMesh& mesh, const std::vector<int>& triangles)
+{
+  LocalMesh local;
+  local.mesh.name = mesh.name;
+  std::unordered_map<int, int> localTexture;
+  const std::vector<std::string> names = mesh.pointAttributes.names();
+  std::vector<std::vector<double>> attributes(names.size());
+  for (int t : triangles)
+  {
+    Triangle corners{};
+    Triangle textures{};
+    for (int k = 0; k < 3; ++k)
+    {
+      const int v = mesh.triangles[t][k];
+      const auto [it, added] =
+        local.localVertex.emplace(v, static_cast<int>(local.globalVertex.size()));
+      if (added)
+      {
+        local.globalVertex.push_back(v);
+        local.mesh.positions.push_back(mesh.positions[v]);
+        if (mesh.hasNormals())
+          local.mesh.normals.push_back(mesh.normals[v]);
+        for (std::size_t a = 0; a < names.size(); ++a)
+        {
+          const AttributeArray& array = mesh.pointAttributes.get(names[a]);
+          attributes[a].insert(attributes[a].end(),
+            array.element(v),
+            array.element(v) + array.components);
+        }
+      }
+      corners[k] = it->second;
+      if (mesh.hasTextureCoordinates())
+      {
+        const int c = mesh.textureCorners[t][k];
+        const auto [tex, newTexture] =
+          localTexture.emplace(c, static_cast<int>(local.globalTexture.size()));
+        if (newTexture)
+        {
+          local.globalTexture.push_back(c);
+          local.mesh.textureCoordinates.push_back(mesh.textureCoordinates[c]);
+        }
+        textures[k] = tex->second;
+      }
+    }
+    local.mesh.triangles.push_back(corners);
+    if (mesh.hasTextureCoordinates())
+      local.mesh.textureCorners.push_back(textures);
+    local.globalTriangle.push_back(t);
+  }
+  for (std::size_t a = 0; a < names.size(); ++a)
+  {
+    local.mesh.pointAttributes.set(
+      names[a], mesh.pointAttributes.get(names[a]).components, std::move(attributes[a]));
+  }
+  return local;
+}
+
+Vector2 planarPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
+{
+  return parameters[0] * frame[0] + parameters[1] * frame[1] + parameters[2] * frame[2];
+}
+
+/// Formula 5-1's plane: the triangle's rest corners in 2D, lengths and
+/// angles kept.
+std::array<Vector2, 3> planarFrame(const std::vector<Vector3>& rest, const Triangle& corners)
+{
+  const Vector3 e1 = rest[corners[1]] - rest[corners[0]];
+  const Vector3 e2 = rest[corners[2]] - rest[corners[0]];
+  const Vector3 xAxis = e1.normalized();
+  const Vector3 yAxis = e1.cross(e2).cross(e1).normalized();
+  return { Vector2::Zero(), Vector2(e1.norm(), 0.0), Vector2(e2.dot(xAxis), e2.dot(yAxis)) };
+}
+
+double cross2(const Vector2& a, const Vector2& b)
+{
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+int cornerIndex(const Vector3& barycentric)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (barycentric[k] == 1.0)
+      return k;
+  }
+  return -1;
+}
+
+} // namespace
+
+//------------------------------------------------------------------------------
+std::uint64_t CuttableVisualMesh::edgeKey(int a, int b)
+{
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
+  const VisualCutSettings& settings)
+  : Settings(settings)
+  , Mesh(binding.visual)
+  , Bindings(binding.vertices)
+  , Edges(binding.collisionEdges)
+  , TriangleRegion(binding.triangleRegion)
+  , TriangleSide(binding.triangleSide)
+  , Paired(binding.pairedVisualVertices)
+{
+  const std::string label = "visual mesh '" + Mesh.name + "'";
+  if (settings.cutSurfaceRows < 0)
+  {
+    throw InvalidInputError(label + ": cut surface rows " +
+                            std::to_string(settings.cutSurfaceRows) + " (must be >= 0)");
+  }
+  if (Bindings.size() != Mesh.vertexCount() || TriangleRegion.size() != Mesh.triangleCount() ||
+      TriangleSide.size() != Mesh.triangleCount() ||
+      Paired.size() != binding.collisionPositions.size())
+  {
+    throw InvalidInputError(label + ": the binding does not match its visual mesh");
+  }
+  TriangleMaterial.assign(Mesh.triangleCount(), VisualMaterial::Surface);
+  // The binding pairs (+, -); here sides are indexed - then +, as paths.
+  for (auto& pair : Paired)
+    std::swap(pair[0], pair[1]);
+  for (std::size_t e = 0; e < Edges.size(); ++e)
+  {
+    EdgeIndex.emplace(edgeKey(Edges[e][0], Edges[e][1]), static_cast<int>(e));
+  }
+  Regions.resize(binding.collisionTriangles.size());
+  for (std::size_t t = 0; t < TriangleRegion.size(); ++t)
+  {
+    const int region = TriangleRegion[t];
+    if (region < 0 || region >= static_cast<int>(Regions.size()) || TriangleSide[t] == 0)
+    {
+      throw InvalidInputError(label + ": triangle " + std::to_string(t) + " has no region");
+    }
+    Regions[region][TriangleSide[t] > 0 ? 1 : 0].push_back(static_cast<int>(t));
+  }
+  for (const BindingPath& p : binding.paths)
+  {
+    const auto& e = binding.collisionEdges[p.collisionEdge];
+    EdgePaths& paths = Paths[edgeKey(e[0], e[1])];
+    if (p.side == 0)
+    {
+      paths.rim = true;
+      paths.sides = { p.visualVertices, p.visualVertices };
+    }
+    else
+    {
+      paths.sides[p.side > 0 ? 1 : 0] = p.visualVertices;
+    }
+  }
+}
+
+int CuttableVisualMesh::edgeIndex(int a, int b)
+{
+  const auto [it, added] = EdgeIndex.emplace(edgeKey(a, b), static_cast<int>(Edges.size()));
+  if (added)
+    Edges.push_back({ { std::min(a, b), std::max(a, b) } });
+  return it->second;
+}
+
+int CuttableVisualMesh::addVertexCopy(int source)
+{
+  const int v = static_cast<int>(Mesh.positions.size());
+  Mesh.positions.push_back(Mesh.positions[source]);
+  if (Mesh.hasNormals())
+    Mesh.normals.push_back(Mesh.normals[source]);
+  Mesh.pointAttributes.appendCopyOf(source);
+  Bindings.push_back(Bindings[source]);
+  return v;
+}
+
+int CuttableVisualMesh::addTriangle(const Triangle& corners,
+  int region,
+  int side,
+  VisualMaterial material)
+{
+  int t = -1;
+  if (!FreeTriangles.empty())
+  {
+    t = FreeTriangles.back();
+    FreeTriangles.pop_back();
+    Mesh.triangles[t] = corners;
+  }
+  else
+  {
+    t = static_cast<int>(Mesh.triangles.size());
+    Mesh.triangles.push_back(corners);
+    if (Mesh.hasTextureCoordinates())
+      Mesh.textureCorners.push_back({ { 0, 0, 0 } });
+    TriangleRegion.push_back(-1);
+    TriangleSide.push_back(0);
+    TriangleMaterial.push_back(material);
+  }
+  TriangleRegion[t] = region;
+  TriangleSide[t] = static_cast<std::int8_t>(side);
+  TriangleMaterial[t] = material;
+  if (side != 0)
+    Regions[region][side > 0 ? 1 : 0].push_back(t);
+  return t;
+}
+
+void CuttableVisualMesh::freeTriangle(int t)
+{
+  Mesh.triangles[t] = { { -1, -1, -1 } };
+  FreeTriangles.push_back(t);
+}
+
+void CuttableVisualMesh::compactTriangles()
+{
+  // Holes left by strips that shrank: the last triangles move into them.
+  std::sort(FreeTriangles.begin(), FreeTriangles.end());
+  while (!FreeTriangles.empty())
+  {
+    const int last = static_cast<int>(Mesh.triangles.size()) - 1;
+    if (FreeTriangles.back() == last)
+    {
+      FreeTriangles.pop_back();
+    }
+    else
+    {
+      const int hole = FreeTriangles.front();
+      FreeTriangles.erase(FreeTriangles.begin());
+      Mesh.triangles[hole] = Mesh.triangles[last];
+      if (Mesh.hasTextureCoordinates())
+        Mesh.textureCorners[hole] = Mesh.textureCorners[last];
+      TriangleRegion[hole] = TriangleRegion[last];
+      TriangleSide[hole] = TriangleSide[last];
+      TriangleMaterial[hole] = TriangleMaterial[last];
+      auto replaceIn = [&](std::vector<int>& list)
+      { std::replace(list.begin(), list.end(), last, hole); };
+      if (TriangleSide[last] != 0)
+        replaceIn(Regions[TriangleRegion[last]][TriangleSide[last] > 0 ? 1 : 0]);
+      else
+        for (auto& [key, strip] : Strips)
+          replaceIn(strip.triangles);
+    }
+    Mesh.triangles.pop_back();
+    if (Mesh.hasTextureCoordinates())
+      Mesh.textureCorners.pop_back();
+    TriangleRegion.pop_back();
+    TriangleSide.pop_back();
+    TriangleMaterial.pop_back();
+  }
+}
+
+double CuttableVisualMesh::edgeParameter(int v, int a, int b) const
+{
+  const VisualVertexBinding& binding = Bindings[v];
+  if (binding.kind == BindingKind::CollisionVertex && (binding.element == a || binding.element == b))
+    return binding.element == a ? 0.0 : 1.0;
+  if (binding.kind == BindingKind::CollisionEdge && Edges[binding.element][0] == std::min(a, b) &&
+      Edges[binding.element][1] == std::max(a, b))
+    return a < b ? binding.parameters[1] : binding.parameters[0];
+  throw InvalidInputError("visual mesh '" + Mesh.name + "': vertex " + std::to_string(v) +
+                          " is not bound to collision edge (" + std::to_string(a) + ", " +
+                          std::to_string(b) + ")");
+}
+
+void CuttableVisualMesh::bindToEdge(int v, int a, int b, double fromA, int side)
+{
+  VisualVertexBinding& binding = Bindings[v];
+  binding.kind = BindingKind::CollisionEdge;
+  binding.element = edgeIndex(a, b);
+  binding.side = side;
+  const double t = a < b ? fromA : 1.0 - fromA;
+  binding.parameters = Vector3(1.0 - t, t, 0.0);
+}
+
+Vector3 CuttableVisualMesh::parametersIn(int v, int triangle, const Triangle& corners) const
+{
+  const VisualVertexBinding& b = Bindings[v];
+  Vector3 result = Vector3::Zero();
+  if (b.kind == BindingKind::CollisionTriangle && b.element == triangle)
+    return b.parameters;
+  for (int k = 0; k < 3; ++k)
+  {
+    if (b.kind == BindingKind::CollisionVertex && corners[k] == b.element)
+    {
+      result[k] = 1.0;
+      return result;
+    }
+    const int next = corners[(k + 1) % 3];
+    if (b.kind == BindingKind::CollisionEdge && edgeKey(corners[k], next) ==
+                                                  edgeKey(Edges[b.element][0], Edges[b.element][1]))
+    {
+      const double t = edgeParameter(v, corners[k], next);
+      result[k] = 1.0 - t;
+      result[(k + 1) % 3] = t;
+      return result;
+    }
+  }
+  throw InvalidInputError("visual mesh '" + Mesh.name + "': vertex " + std::to_string(v) +
+                          " is not bound to collision triangle " + std::to_string(triangle) +
+                          " or one of its edges or corners");
+}
+
+std::vector<int> CuttableVisualMesh::path(int a, int b, int side) const
+{
+  const auto it = Paths.find(edgeKey(a, b));
+  return it == Paths.end() ? std::vector<int>{} : it->second.sides[side > 0 ? 1 : 0];
+}
+
+bool CuttableVisualMesh::isRimEdge(int a, int b) const
+{
+  const auto it = Paths.find(edgeKey(a, b));
+  return it != Paths.end() && it->second.rim;
+}
+
+std::size_t CuttableVisualMesh::cutSurfaceTriangleCount() const
+{
+  return static_cast<std::size_t>(
+    std::count(TriangleMaterial.begin(), TriangleMaterial.end(), VisualMaterial::CutSurface));
+}
+
+int CuttableVisualMesh::collisionTriangleOf(int v, const CuttableCollisionMesh& collision) const
+{
+  const VisualVertexBinding& b = Bindings[v];
+  switch (b.kind)
+  {
+    case BindingKind::CollisionTriangle:
+      return b.element;
+    case BindingKind::CollisionEdge:
+      return collision.trianglesOfEdge(Edges[b.element][0], Edges[b.element][1])[0];
+    case BindingKind::CollisionVertex:
+    default:
+      return collision.trianglesOfVertex(b.element).empty()
+               ? -1
+               : collision.trianglesOfVertex(b.element).front();
+  }
+}
+
+//------------------------------------------------------------------------------
+// 5.3.2, first half: where each split collision edge's paths are split.
+void CuttableVisualMesh::splitEdgePaths(CutContext& context)
+{
+  for (const NewCollisionVertex& made : context.cut->newVertices)
+  {
+    if (made.duplicateOf >= 0)
+      continue;
+    EdgePoint point;
+    point.vertex = made.vertex;
+    point.a = std::min(made.edge[0], made.edge[1]);
+    point.b = std::max(made.edge[0], made.edge[1]);
+    point.u = made.edge[0] < made.edge[1] ? made.t : 1.0 - made.t;
+    const auto found = Paths.find(edgeKey(point.a, point.b));
+    if (found == Paths.end())
+    {
+      throw InvalidInputError("visual mesh '" + Mesh.name + "': collision edge (" +
+                              std::to_string(point.a) + ", " + std::to_string(point.b) +
+                              ") has no visual path");
+    }
+    point.rim = found->second.rim;
+    for (int side = 0; side < 2; ++side)
+    {
+      const std::vector<int>& p = found->second.sides[side];
+      std::size_t i = 0;
+      while (i + 2 < p.size() && edgeParameter(p[i + 1], point.a, point.b) <= point.u)
+        ++i;
+      const double from = edgeParameter(p[i], point.a, point.b);
+      const double to = edgeParameter(p[i + 1], point.a, point.b);
+      double lambda = to > from ? (point.u - from) / (to - from) : 0.5;
+      point.pathPosition[side] = static_cast<int>(i);
+      if (lambda < PathSnap && i > 0)
+        point.visual[side] = SurfacePoint::atVertex(p[i]);
+      else if (lambda > 1.0 - PathSnap && i + 2 < p.size())
+        point.visual[side] = SurfacePoint::atVertex(p[i + 1]);
+      else
+      {
+        lambda = std::clamp(lambda, PathSnap, 1.0 - PathSnap);
+        point.visual[side] = SurfacePoint::onEdge(p[i], p[i + 1], lambda);
+      }
+    }
+    context.edgePointOf.emplace(made.vertex, static_cast<int>(context.edgePoints.size()));
+    context.edgePoints.push_back(point);
+  }
+}
+
+// 5.3.2, second half: each new edge across a split triangle, traced in the
+// triangle's 2D frame through the visual edges of its region on each side.
+void CuttableVisualMesh::traceRegionCuts(CutContext& context)
+{
+  const auto& rest = context.collision->restPositions();
+  for (std::size_t s = 0; s < context.cut->splits.size(); ++s)
+  {
+    const CollisionTriangleSplit& split = context.cut->splits[s];
+    const std::array<Vector2, 3> frame = planarFrame(rest, split.parentCorners);
+    const double scale = std::max(
+      { (frame[1] - frame[0]).norm(), (frame[2] - frame[1]).norm(), (frame[0] - frame[2]).norm() });
+    // The pieces' edges that cross the parent (not along one of its sides).
+    std::vector<std::array<int, 2>> crossing;
+    std::vector<std::array<Vector3, 2>> ends;
+    for (std::size_t c = 0; c < split.children.size(); ++c)
+    {
+      const Triangle& piece = context.collision->triangles()[split.children[c]];
+      for (int k = 0; k < 3; ++k)
+      {
+        const Vector3& p = split.childCorners[c][k];
+        const Vector3& q = split.childCorners[c][(k + 1) % 3];
+        if ((p[0] == 0.0 && q[0] == 0.0) || (p[1] == 0.0 && q[1] == 0.0) ||
+            (p[2] == 0.0 && q[2] == 0.0))
+          continue;
+        std::array<int, 2> pair{ { context.root(piece[k]), context.root(piece[(k + 1) % 3]) } };
+        std::array<Vector3, 2> end{ { p, q } };
+        if (pair[0] > pair[1])
+        {
+          std::swap(pair[0], pair[1]);
+          std::swap(end[0], end[1]);
+        }
+        if (std::find(crossing.begin(), crossing.end(), pair) == crossing.end())
+        {
+          crossing.push_back(pair);
+          ends.push_back(end);
+        }
+      }
+    }
+    for (int side = 0; side < 2; ++side)
+    {
+      RegionCut region;
+      region.split = static_cast<int>(s);
+      region.side = side;
+      region.triangles = Regions[split.parent][side];
+      for (int v : regionVertices(region.triangles))
+      {
+        region.parameters.emplace(v, parametersIn(v, split.parent, split.parentCorners));
+      }
+      for (std::size_t e = 0; e < crossing.size(); ++e)
+      {
+        CrossingPath traced;
+        traced.ends = crossing[e];
+        traced.barycentric = ends[e];
+        traced.path = traceCut(region, frame, scale, traced, context);
+        region.crossings.push_back(std::move(traced));
+      }
+      context.regions.push_back(std::move(region));
+    }
+  }
+}
+
+std::vector<int> CuttableVisualMesh::regionVertices(const std::vector<int>& triangles) const
+{
+  std::vector<int> vertices;
+  for (int t : triangles)
+    vertices.insert(vertices.end(), Mesh.triangles[t].begin(), Mesh.triangles[t].end());
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  return vertices;
+}
+
+SurfacePoint CuttableVisualMesh::featurePoint(int vertex,
+  const Vector3& barycentric,
+  int side,
+  const CutContext& context) const
+{
+  if (cornerIndex(barycentric) >= 0)
+    return SurfacePoint::atVertex(Paired[vertex][side]);
+  return context.edgePoints[context.edgePointOf.at(vertex)].visual[side];
+}
+
+SurfacePath CuttableVisualMesh::traceCut(const RegionCut& region,
+  const std::array<Vector2, 3>& frame,
+  double scale,
+  const CrossingPath& crossing,
+  const CutContext& context) const
+{
+  const Vector2 from = planarPoint(frame, crossing.barycentric[0]);
+  const Vector2 along = planarPoint(frame, crossing.barycentric[1]) - from;
+  const double length = along.norm();
+  const double tolerance = OnLineTolerance * scale;
+  // Crossing points: nodes 0 and 1 are the cut's ends, then vertices within
+  // a round-off of the line and points inside edges whose ends lie apart.
+  struct Node
+  {
+    double s;
+    SurfacePoint point;
+  };
+  std::vector<Node> nodes{
+    { 0.0, featurePoint(crossing.ends[0], crossing.barycentric[0], region.side, context) },
+    { 1.0, featurePoint(crossing.ends[1], crossing.barycentric[1], region.side, context) }
+  };
+  std::unordered_map<int, double> signedDistance;
+  std::unordered_map<int, int> vertexNode;
+  std::unordered_map<std::uint64_t, int> edgeNode;
+  for (int n = 0; n < 2; ++n)
+  {
+    const SurfacePoint& p = nodes[n].point;
+    if (p.isVertex())
+      vertexNode[p.vertex] = n;
+    else
+      edgeNode[edgeKey(p.edgeStart, p.edgeEnd)] = n;
+  }
+  for (const auto& [v, parameters] : region.parameters)
+  {
+    const Vector2 x = planarPoint(frame, parameters) - from;
+    const double d = cross2(along, x) / length;
+    signedDistance.emplace(v, d);
+    const double s = x.dot(along) / (length * length);
+    // Only inner vertices: the cut meets the region's border at its ends.
+    if (Bindings[v].kind == BindingKind::CollisionTriangle && std::abs(d) < tolerance &&
+        s > CutEndMargin && s < 1.0 - CutEndMargin && !vertexNode.count(v))
+    {
+      vertexNode[v] = static_cast<int>(nodes.size());
+      nodes.push_back({ s, SurfacePoint::atVertex(v) });
+    }
+  }
+  // The cut's ends lie on the line whatever round-off says.
+  auto onLine = [&](int v)
+  {
+    const auto node = vertexNode.find(v);
+    return (node != vertexNode.end() && node->second < 2) ||
+           (Bindings[v].kind == BindingKind::CollisionTriangle &&
+             std::abs(signedDistance.at(v)) < tolerance);
+  };
+  // Per region triangle, the crossing points on its border; a triangle
+  // with two joins them (the cut passes through it).
+  std::unordered_map<int, std::vector<int>> links;
+  for (int t : region.triangles)
+  {
+    const Triangle& tri = Mesh.triangles[t];
+    std::vector<int> here;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      if (vertexNode.count(a) && (vertexNode.at(a) < 2 || onLine(a)))
+        here.push_back(vertexNode.at(a));
+      const std::uint64_t key = edgeKey(a, b);
+      auto found = edgeNode.find(key);
+      if (found == edgeNode.end() && !onLine(a) && !onLine(b) &&
+          (signedDistance.at(a) > 0) != (signedDistance.at(b) > 0))
+      {
+        // Never onto a vertex of the region's border (it keeps its own
+        // binding): a round-off crossing there stays a little inside.
+        double lambda = signedDistance.at(a) / (signedDistance.at(a) - signedDistance.at(b));
+        if (Bindings[a].kind != BindingKind::CollisionTriangle)
+          lambda = std::max(lambda, BorderClearance);
+        if (Bindings[b].kind != BindingKind::CollisionTriangle)
+          lambda = std::min(lambda, 1.0 - BorderClearance);
+        const Vector2 x = (1.0 - lambda) * planarPoint(frame, region.parameters.at(a)) +
+                          lambda * planarPoint(frame, region.parameters.at(b)) - from;
+        // Near an end the parameterisation may put a crossing a little
+        // beyond it: kept (only the walk decides what the path visits).
+        const double s = x.dot(along) / (length * length);
+        if (s > -0.5 && s < 1.5)
+        {
+          found = edgeNode.emplace(key, static_cast<int>(nodes.size())).first;
+          nodes.push_back({ s, SurfacePoint::onEdge(a, b, lambda) });
+        }
+      }
+      if (found != edgeNode.end())
+        here.push_back(found->second);
+    }
+    std::sort(here.begin(), here.end());
+    here.erase(std::unique(here.begin(), here.end()), here.end());
+    if (here.size() < 2)
+      continue;
+    // Two points (more only at round-off): the first and last along the cut.
+    const auto [first, last] = std::minmax_element(here.begin(),
+      here.end(),
+      [&](int x, int y) { return nodes[x].s < nodes[y].s; });
+    links[*first].push_back(*last);
+    links[*last].push_back(*first);
+  }
+  // Walk from one end to the other through the triangles: a fold in the
+  // region's parameterisation (rare) makes the order along the line differ
+  // from the order through the mesh, and the mesh order is the one that
+  // makes a path.
+  SurfacePath traced;
+  std::vector<char> visited(nodes.size(), 0);
+  int current = 0;
+  visited[0] = 1;
+  traced.points.push_back(nodes[0].point);
+  while (current != 1)
+  {
+    int next = -1;
+    for (int candidate : links[current])
+    {
+      if (visited[candidate] || next == 1)
+        continue;
+      if (next < 0 || candidate == 1 || nodes[candidate].s < nodes[next].s)
+        next = candidate;
+    }
+    if (next < 0 && std::getenv("TT_DEBUG"))
+    {
+      for (std::size_t n = 0; n < nodes.size(); ++n)
+      {
+        std::fprintf(stderr, "node %zu s=%.4f v=%d e=(%d %d) %.3f visited %d links:", n, nodes[n].s, nodes[n].point.vertex, nodes[n].point.edgeStart, nodes[n].point.edgeEnd, nodes[n].point.edgeParameter, int(visited[n]));
+        for (int l : links[static_cast<int>(n)]) std::fprintf(stderr, " %d", l);
+        std::fprintf(stderr, "\n");
+      }
+      for (int t : region.triangles) {
+        const Triangle& tri = Mesh.triangles[t];
+        bool show = false;
+        for (int v : tri) show = show || (nodes[1].point.isVertex() ? v == nodes[1].point.vertex : (v == nodes[1].point.edgeStart || v == nodes[1].point.edgeEnd));
+        if (!show) continue;
+        std::fprintf(stderr, "end tri %d:", t);
+        for (int v : tri) { auto x = planarPoint(frame, region.parameters.at(v)) - from; std::fprintf(stderr, " %d(d=%.3g s=%.4f k%d)", v, signedDistance.at(v), x.dot(along)/(length*length), int(Bindings[v].kind)); }
+        std::fprintf(stderr, "\n");
+      }
+    }
+    if (next < 0)
+    {
+      throw Error("visual cut of '" + Mesh.name + "': the cut from collision vertex " +
+                  std::to_string(crossing.ends[0]) + " to " + std::to_string(crossing.ends[1]) +
+                  " loses its way in the visual region on side " + std::to_string(region.side));
+    }
+    visited[next] = 1;
+    traced.points.push_back(nodes[next].point);
+    current = next;
+  }
+  return traced;
+}
+
+//------------------------------------------------------------------------------
+// The traced cuts inserted into the regions (PathRemeshing on the regions
+// only) and spliced back into the visual mesh.
+void CuttableVisualMesh::remeshRegions(CutContext& context)
+{
+  std::vector<int> triangles;
+  std::vector<int> regionOfLocal;
+  for (std::size_t r = 0; r < context.regions.size(); ++r)
+  {
+    for (int t : context.regions[r].triangles)
+    {
+      triangles.push_back(t);
+      regionOfLocal.push_back(static_cast<int>(r));
+    }
+  }
+  if (triangles.empty())
+    return;
+  LocalMesh local = extractTriangles(Mesh, triangles);
+  auto toLocal = [&](SurfacePoint p)
+  {
+    if (p.isVertex())
+      return SurfacePoint::atVertex(local.localVertex.at(p.vertex));
+    const int a = local.localVertex.at(p.edgeStart), b = local.localVertex.at(p.edgeEnd);
+    return SurfacePoint::onEdge(p.edgeStart < p.edgeEnd ? a : b,
+      p.edgeStart < p.edgeEnd ? b : a,
+      p.edgeStart < p.edgeEnd ? p.edgeParameter : 1.0 - p.edgeParameter);
+  };
+  std::vector<SurfacePath> paths;
+  for (const RegionCut& region : context.regions)
+  {
+    for (const CrossingPath& crossing : region.crossings)
+    {
+      SurfacePath p;
+      for (const SurfacePoint& point : crossing.path.points)
+        p.points.push_back(toLocal(point));
+      paths.push_back(std::move(p));
+    }
+  }
+  const RemeshedSurface remeshed = insertPaths(local.mesh, paths);
+  const TriangleMesh& out = remeshed.mesh;
+  const int localCount = static_cast<int>(local.globalVertex.size());
+
+  // New vertices, their attributes and texture coordinates.
+  std::vector<int> global(local.globalVertex);
+  const std::vector<std::string> names = Mesh.pointAttributes.names();
+  for (int i = localCount; i < static_cast<int>(out.vertexCount()); ++i)
+  {
+    const int v = static_cast<int>(Mesh.positions.size());
+    global.push_back(v);
+    context.newVertices.push_back(v);
+    Mesh.positions.push_back(out.positions[i]);
+    if (Mesh.hasNormals())
+      Mesh.normals.push_back(out.normals[i]);
+    for (const std::string& name : names)
+    {
+      const AttributeArray& from = out.pointAttributes.get(name);
+      AttributeArray& into = Mesh.pointAttributes.get(name);
+      into.values.insert(into.values.end(), from.element(i), from.element(i) + from.components);
+    }
+    Bindings.emplace_back();
+  }
+  std::vector<int> globalTexture(local.globalTexture);
+  for (std::size_t c = local.globalTexture.size(); c < out.textureCoordinates.size(); ++c)
+  {
+    globalTexture.push_back(static_cast<int>(Mesh.textureCoordinates.size()));
+    Mesh.textureCoordinates.push_back(out.textureCoordinates[c]);
+  }
+
+  // Parameters of every vertex in its region's parent (inserted vertices
+  // interpolated along the edge they were inserted in), then the triangles.
+  auto parametersOf = [&](RegionCut& region, int i) -> Vector3
+  {
+    if (i < localCount)
+      return region.parameters.at(global[i]);
+    const SurfacePoint& on = remeshed.insertedOn[i - localCount];
+    return (1.0 - on.edgeParameter) * region.parameters.at(global[on.edgeStart]) +
+           on.edgeParameter * region.parameters.at(global[on.edgeEnd]);
+  };
+  for (RegionCut& region : context.regions)
+    Regions[context.cut->splits[region.split].parent][region.side].clear();
+  std::vector<std::pair<int, int>> placed; // (global triangle, region)
+  for (std::size_t j = 0; j < out.triangleCount(); ++j)
+  {
+    const int r = regionOfLocal[remeshed.inputTriangle[j]];
+    RegionCut& region = context.regions[r];
+    const Triangle& corners = out.triangles[j];
+    Triangle mapped{ { global[corners[0]], global[corners[1]], global[corners[2]] } };
+    for (int k = 0; k < 3; ++k)
+    {
+      if (!region.parameters.count(mapped[k]))
+        region.parameters.emplace(mapped[k], parametersOf(region, corners[k]));
+    }
+    int t = -1;
+    if (j < local.globalTriangle.size())
+    {
+      t = local.globalTriangle[j];
+      Mesh.triangles[t] = mapped;
+    }
+    else
+    {
+      t = addTriangle(mapped, -1, 0, VisualMaterial::Surface);
+    }
+    if (Mesh.hasTextureCoordinates())
+    {
+      const Triangle& tex = out.textureCorners[j];
+      Mesh.textureCorners[t] = {
+        { globalTexture[tex[0]], globalTexture[tex[1]], globalTexture[tex[2]] }
+      };
+    }
+    region.newTriangles.push_back(t);
+    context.changedTriangles.push_back(t);
+  }
+  // The traced paths as visual vertices.
+  std::size_t p = 0;
+  for (RegionCut& region : context.regions)
+  {
+    for (CrossingPath& crossing : region.crossings)
+    {
+      crossing.vertices.clear();
+      for (int i : remeshed.pathVertices[p++])
+        crossing.vertices.push_back(global[i]);
+    }
+  }
+}
+
+} // namespace thintissue

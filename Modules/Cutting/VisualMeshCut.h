@@ -1,0 +1,199 @@
+// Cutting the visual mesh with the collision mesh (thesis 5.3.2 - 5.3.4),
+// through the visual-collision binding (5.2), in the rest configuration.
+//
+//  5.3.2 Visual cut: every visual vertex of the region of a split collision
+//        triangle (one region per side) has barycentric parameters in it
+//        (formula 5-1); in the triangle's 2D frame, each new edge between
+//        its pieces is intersected with the region's visual edges (a vertex
+//        within a round-off of the line is on it). Where a collision edge
+//        is split, its visual paths are split at the same edge parameter.
+//        The points are inserted as visual vertices (rest position, normal,
+//        texture coordinates and point attributes interpolated along the
+//        visual edge they cut) and the region re-triangulated around them
+//        (PathRemeshing.h, on the region only); then, wherever the collision
+//        mesh opened, the visual vertices bound to the opened collision
+//        vertices and edges get one copy per side, so the visual surface
+//        opens with it.
+//  5.3.3 Binding update: a vertex bound to a split triangle is rebound to
+//        the piece that holds it, (a', b', c') = (a, b, c) M^-1 (formula
+//        5-2, M from CollisionTriangleSplit::childCorners); a vertex on a
+//        split collision edge keeps its accumulated-length parameter,
+//        rescaled to its half; the visual vertex inserted where a collision
+//        edge is split becomes the new collision vertex's visual vertex (one
+//        per side, or one on the rim). A vertex on a new edge across a
+//        triangle is bound to it by its parameter along the straight 2D cut
+//        (the thesis takes the accumulated 3D length there; the straight
+//        parameter is the point the cut computed, so it stays consistent
+//        with the 5-2 parameters of its neighbours and folds no triangle).
+//  5.3.4 Cut surface: each opened collision edge gets a strip joining its
+//        + and - visual paths (fig. 5-12): `cutSurfaceRows` rows of
+//        vertices in between, at the union of both sides' edge parameters
+//        (up-sampling), bound to the edge; the rows at a collision vertex
+//        are shared by the strips meeting there, so the surface stays
+//        closed. A strip whose edge is cut again is split by comparing
+//        parameters (fig. 5-13), not by geometry.
+//
+// Every cut costs what the cut touches: the regions of the split and
+// re-cornered collision triangles and the strips on their edges.
+#ifndef VisualMeshCut_h
+#define VisualMeshCut_h
+
+#include "CollisionMeshCut.h"
+#include "SurfacePath.h"
+#include "ThinTissueCuttingModule.h"
+#include "VisualCollisionBinding.h"
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace thintissue
+{
+
+struct VisualCutSettings
+{
+  /// Rows of cut-surface vertices between the + and - sides (fig. 5-12c);
+  /// 0 joins the two sides directly.
+  int cutSurfaceRows = 1;
+};
+
+/// What one cut did to the visual mesh.
+struct VisualCutResult
+{
+  /// Visual vertices made (on the cut, copies where the mesh opened, cut
+  /// surface), ascending.
+  std::vector<int> newVertices;
+  /// Vertices whose binding changed (new ones included), ascending.
+  std::vector<int> reboundVertices;
+  /// Triangles rewritten or added, ascending.
+  std::vector<int> changedTriangles;
+  bool changed() const { return !changedTriangles.empty(); }
+};
+
+/// Per visual triangle: what it is part of.
+enum class VisualMaterial : std::uint8_t
+{
+  Surface = 0,   ///< the tissue's own surface
+  CutSurface = 1 ///< made by cutting (5.3.4)
+};
+
+class THINTISSUECUTTING_EXPORT CuttableVisualMesh
+{
+public:
+  CuttableVisualMesh() = default;
+  /// Takes the binding's re-meshed visual surface and bindings. Throws
+  /// InvalidInputError on a negative row count or an inconsistent binding.
+  explicit CuttableVisualMesh(const VisualCollisionBinding& binding,
+    const VisualCutSettings& settings = {});
+
+  /// Follows one cut of the collision mesh: `collision` is the mesh after
+  /// the cut, `cut` what CuttableCollisionMesh::cut reported. The collision
+  /// mesh must be the one the binding was made for, cut after cut.
+  VisualCutResult cut(const CuttableCollisionMesh& collision, const CollisionCutResult& cut);
+
+  /// The visual surface with its cut surfaces (rest positions).
+  const TriangleMesh& mesh() const { return Mesh; }
+  const std::vector<VisualVertexBinding>& bindings() const { return Bindings; }
+  /// Collision edges the bindings refer to (lower, higher): the binding's,
+  /// then those made by cuts, in the order made.
+  const std::vector<std::array<int, 2>>& collisionEdges() const { return Edges; }
+  /// Per triangle: the collision triangle of its region (for a cut-surface
+  /// triangle, the triangle on its collision edge) and its side (+1 / -1,
+  /// 0 on the cut surface).
+  const std::vector<int>& triangleRegions() const { return TriangleRegion; }
+  const std::vector<std::int8_t>& triangleSides() const { return TriangleSide; }
+  const std::vector<VisualMaterial>& triangleMaterials() const { return TriangleMaterial; }
+  /// Per collision vertex: its visual vertex on the - and + side (the same
+  /// vertex twice on the rim).
+  const std::vector<std::array<int, 2>>& pairedVisualVertices() const { return Paired; }
+  /// The visual path of collision edge (a, b) on `side` (+1 / -1), from the
+  /// lower collision vertex to the higher; empty if there is none.
+  std::vector<int> path(int a, int b, int side) const;
+  /// Whether the edge's two sides meet on the rim (one path for both).
+  bool isRimEdge(int a, int b) const;
+  std::size_t cutSurfaceTriangleCount() const;
+  /// A collision triangle holding visual vertex v's bound element.
+  int collisionTriangleOf(int v, const CuttableCollisionMesh& collision) const;
+  /// Barycentric parameters of visual vertex v in a collision triangle with
+  /// corners `corners` (index `triangle`) that holds its bound element.
+  Vector3 parametersIn(int v, int triangle, const Triangle& corners) const;
+
+private:
+  struct EdgePaths
+  {
+    /// [0]: side -1, [1]: side +1, from the lower collision vertex.
+    std::array<std::vector<int>, 2> sides;
+    bool rim = false;
+  };
+  struct CutStrip
+  {
+    /// Inner rows (cutSurfaceRows), each ordered along the edge, without
+    /// the columns at the edge's ends.
+    std::vector<std::vector<int>> rows;
+    std::vector<int> triangles;
+  };
+  struct CutContext;
+  struct RegionCut;
+  struct EdgePoint;
+  struct CrossingPath;
+
+  static std::uint64_t edgeKey(int a, int b);
+  int edgeIndex(int a, int b);
+  int addVertexCopy(int source);
+  int addTriangle(const Triangle& corners, int region, int side, VisualMaterial material);
+  void freeTriangle(int t);
+  void compactTriangles();
+  double edgeParameter(int v, int a, int b) const;
+  void bindToEdge(int v, int a, int b, double fromA, int side);
+
+  std::vector<int> regionVertices(const std::vector<int>& triangles) const;
+  SurfacePoint featurePoint(int vertex,
+    const Vector3& barycentric,
+    int side,
+    const CutContext& context) const;
+  SurfacePath traceCut(const RegionCut& region,
+    const std::array<Vector2, 3>& frame,
+    double scale,
+    const CrossingPath& crossing,
+    const CutContext& context) const;
+
+  void splitEdgePaths(CutContext& context);
+  void traceRegionCuts(CutContext& context);
+  void remeshRegions(CutContext& context);
+  void rebindSplitRegions(CutContext& context);
+  std::unordered_map<int, char> bindCrossingVertices(RegionCut& region, CutContext& context);
+  void assignPieces(RegionCut& region,
+    const std::unordered_map<int, char>& onCut,
+    CutContext& context);
+  void finishEdgePoints(CutContext& context);
+  void openVisualMesh(const CuttableCollisionMesh& collision, CutContext& context);
+  void updateEdgePaths(const CuttableCollisionMesh& collision, CutContext& context);
+  void updateCutSurface(const CuttableCollisionMesh& collision, CutContext& context);
+  void splitStrip(std::uint64_t key, int a, int b, int middle, double at, CutContext& context);
+  const std::vector<int>& endColumn(int collisionVertex, const Vector3& outward);
+  std::vector<int> openPart(const std::vector<int>& path, int a, int b) const;
+  void buildStrip(const CuttableCollisionMesh& collision, int a, int b, CutStrip& strip);
+
+  VisualCutSettings Settings;
+  TriangleMesh Mesh;
+  std::vector<VisualVertexBinding> Bindings;
+  std::vector<std::array<int, 2>> Edges;
+  std::unordered_map<std::uint64_t, int> EdgeIndex;
+  std::vector<int> TriangleRegion;
+  std::vector<std::int8_t> TriangleSide;
+  std::vector<VisualMaterial> TriangleMaterial;
+  std::vector<std::array<int, 2>> Paired;
+  /// Per collision triangle: its region's visual triangles on side -1, +1.
+  std::vector<std::array<std::vector<int>, 2>> Regions;
+  std::unordered_map<std::uint64_t, EdgePaths> Paths;
+  std::unordered_map<std::uint64_t, CutStrip> Strips;
+  /// Per collision vertex on a cut: the cut-surface vertices of its column.
+  std::unordered_map<int, std::vector<int>> EndColumns;
+  std::vector<int> FreeTriangles;
+  int CutSurfaceTexture = -1;
+};
+
+} // namespace thintissue
+
+#endif

@@ -1,0 +1,82 @@
+// State of one visual cut, shared by the stages of CuttableVisualMesh::cut
+// (VisualMeshCut.cxx, VisualBindingUpdate.cxx, CutSurface.cxx).
+#ifndef VisualMeshCutPrivate_h
+#define VisualMeshCutPrivate_h
+
+#include "VisualMeshCut.h"
+
+#include <map>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace thintissue
+{
+
+/// A collision vertex made inside collision edge (a, b), a < b, at
+/// parameter u from a, and where it lies on the edge's visual paths.
+struct CuttableVisualMesh::EdgePoint
+{
+  int vertex = -1;
+  int a = -1;
+  int b = -1;
+  double u = 0.0;
+  bool rim = false;
+  /// Per side (- then +): the point on the path, the path segment it is in,
+  /// and the visual vertex it became.
+  std::array<SurfacePoint, 2> visual;
+  std::array<int, 2> pathPosition{ { 0, 0 } };
+  std::array<int, 2> visualVertex{ { -1, -1 } };
+};
+
+/// A new collision edge across a split triangle, traced on one side.
+struct CuttableVisualMesh::CrossingPath
+{
+  /// Its collision vertices (as before the mesh opened), lower first, and
+  /// their barycentric coordinates in the parent.
+  std::array<int, 2> ends{ { -1, -1 } };
+  std::array<Vector3, 2> barycentric;
+  SurfacePath path;          ///< in visual vertices before re-meshing
+  std::vector<int> vertices; ///< the visual vertices it became
+};
+
+/// The region of a split collision triangle on one side.
+struct CuttableVisualMesh::RegionCut
+{
+  int split = -1; ///< index into CollisionCutResult::splits
+  int side = 0;   ///< 0: -, 1: +
+  std::vector<int> triangles;
+  /// Barycentric parameters in the parent of every vertex of the region.
+  std::unordered_map<int, Vector3> parameters;
+  std::vector<CrossingPath> crossings;
+  std::vector<int> newTriangles;
+};
+
+struct CuttableVisualMesh::CutContext
+{
+  const CuttableCollisionMesh* collision = nullptr;
+  const CollisionCutResult* cut = nullptr;
+  /// Collision vertex copies made by this cut -> the vertex copied.
+  std::unordered_map<int, int> originalOf;
+  std::vector<EdgePoint> edgePoints;
+  std::unordered_map<int, int> edgePointOf; ///< collision vertex -> edgePoints
+  std::vector<RegionCut> regions;
+  /// (visual vertex, element code) -> the visual vertex serving it: codes
+  /// 2 v for collision vertex v, 2 e + 1 for collision edge e.
+  std::map<std::pair<int, int>, int> copies;
+  /// Cut strips to rebuild (edge keys).
+  std::vector<std::uint64_t> strips;
+  std::vector<int> newVertices;
+  std::vector<int> rebound;
+  std::vector<int> changedTriangles;
+
+  int root(int v) const
+  {
+    const auto it = originalOf.find(v);
+    return it == originalOf.end() ? v : it->second;
+  }
+};
+
+} // namespace thintissue
+
+#endif
