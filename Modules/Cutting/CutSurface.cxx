@@ -10,8 +10,6 @@
 #include <algorithm>
 #include <unordered_map>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 namespace thintissue
 {
@@ -246,30 +244,6 @@ void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision
   const int rows = Settings.cutSurfaceRows;
   for (const auto& [a, b] : edges)
   {
-    if (std::getenv("TT_DEBUG"))
-    {
-      const EdgePaths& paths = Paths.at(edgeKey(a, b));
-      for (int side = 0; side < 2; ++side)
-        for (int w : paths.sides[side])
-        {
-          try { edgeParameter(w, a, b); }
-          catch (...)
-          {
-            const auto& bb = Bindings[w];
-            std::fprintf(stderr, "edge (%d %d) side %d vertex %d kind %d element %d", a, b, side, w, int(bb.kind), bb.element);
-            if (bb.kind == BindingKind::CollisionEdge) std::fprintf(stderr, " = (%d %d)", Edges[bb.element][0], Edges[bb.element][1]);
-            std::fprintf(stderr, "\n path:");
-            for (int x : paths.sides[side]) std::fprintf(stderr, " %d", x);
-            std::fprintf(stderr, "\n new:");
-            for (auto& n : context.cut->newVertices) std::fprintf(stderr, " %d<-%d|(%d %d)", n.vertex, n.duplicateOf, n.edge[0], n.edge[1]);
-            std::fprintf(stderr, "\n cutEdges:");
-            for (auto& e : context.cut->cutEdges) std::fprintf(stderr, " (%d %d)", e[0], e[1]);
-            std::fprintf(stderr, "\n copies:");
-            for (auto& [k, v] : context.copies) if (k.first == w || v == w) std::fprintf(stderr, " (%d,%d)->%d", k.first, k.second, v);
-            std::fprintf(stderr, "\n");
-          }
-        }
-    }
     auto [it, added] = Strips.emplace(edgeKey(a, b), CutStrip{});
     CutStrip& strip = it->second;
     if (added)

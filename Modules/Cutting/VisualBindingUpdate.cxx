@@ -14,31 +14,27 @@ namespace thintissue
 namespace
 {
 
-/// Formula 5-2: the piece of a split triangle holding parent parameters x,
-/// and x's parameters in it; the piece where the smallest is largest.
-int pieceHolding(const std::vector<Eigen::Matrix3d>& inverses, const Vector3& x, Vector3& inPiece)
+/// The piece (a triangle in the plane) a point lies in, or is nearest to:
+/// the one where its smallest barycentric coordinate is largest.
+int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vector2& x)
 {
-  int best = -1;
+  int best = 0;
   double bestMinimum = -std::numeric_limits<double>::infinity();
-  for (std::size_t c = 0; c < inverses.size(); ++c)
+  for (std::size_t c = 0; c < pieces.size(); ++c)
   {
-    const Vector3 y = (x.transpose() * inverses[c]).transpose();
-    if (y.minCoeff() > bestMinimum)
+    const auto& p = pieces[c];
+    Eigen::Matrix2d m;
+    m.col(0) = p[1] - p[0];
+    m.col(1) = p[2] - p[0];
+    const Vector2 bc = m.inverse() * (x - p[0]);
+    const double minimum = std::min({ 1.0 - bc.x() - bc.y(), bc.x(), bc.y() });
+    if (minimum > bestMinimum)
     {
-      bestMinimum = y.minCoeff();
+      bestMinimum = minimum;
       best = static_cast<int>(c);
-      inPiece = y;
     }
   }
-  inPiece = inPiece.cwiseMax(0.0);
-  inPiece /= inPiece.sum();
   return best;
-}
-
-double alongSegment(const Vector3& x, const Vector3& from, const Vector3& to)
-{
-  const Vector3 d = to - from;
-  return std::clamp((x - from).dot(d) / d.squaredNorm(), 0.0, 1.0);
 }
 
 } // namespace
@@ -73,8 +69,10 @@ std::unordered_map<int, char> CuttableVisualMesh::bindCrossingVertices(RegionCut
     const CrossingPath& first = region.crossings[crossings.front()];
     if (crossings.size() == 1)
     {
+      // Along the cut in the plane it was traced in: increasing along it.
+      const Vector2 d = first.planar[1] - first.planar[0];
       const double s =
-        alongSegment(region.parameters.at(w), first.barycentric[0], first.barycentric[1]);
+        std::clamp((region.planar.at(w) - first.planar[0]).dot(d) / d.squaredNorm(), 0.0, 1.0);
       bindToEdge(w, first.ends[0], first.ends[1], s, side);
     }
     else
@@ -149,21 +147,18 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
       trianglesOfEdge[edgeKey(tri[k], tri[(k + 1) % 3])].push_back(static_cast<int>(i));
   }
   std::vector<int> piece(region.newTriangles.size(), -1);
-  Vector3 inPiece;
   for (std::size_t seed = 0; seed < piece.size(); ++seed)
   {
     if (piece[seed] >= 0)
       continue;
     std::vector<int> members{ static_cast<int>(seed) };
     piece[seed] = static_cast<int>(seed);
-    std::vector<int> votes(split.children.size(), 0);
+    Vector2 centroid = Vector2::Zero();
     for (std::size_t m = 0; m < members.size(); ++m)
     {
       const Triangle& tri = Mesh.triangles[region.newTriangles[members[m]]];
-      Vector3 centroid = Vector3::Zero();
       for (int v : tri)
-        centroid += region.parameters.at(v) / 3.0;
-      ++votes[pieceHolding(inverses, centroid, inPiece)];
+        centroid += region.planar.at(v) / 3.0;
       for (int k = 0; k < 3; ++k)
       {
         const std::uint64_t key = edgeKey(tri[k], tri[(k + 1) % 3]);
@@ -177,8 +172,7 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
           }
       }
     }
-    const int c =
-      static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+    const int c = pieceContaining(region.pieces, centroid / static_cast<double>(members.size()));
     const int child = split.children[c];
     for (int m : members)
     {

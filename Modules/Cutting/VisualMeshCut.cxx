@@ -4,13 +4,13 @@
 #include "VisualMeshCutPrivate.h"
 
 #include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
-#include <cstdio>
-#include <cstdlib>
 
 namespace thintissue
 {
@@ -104,6 +104,93 @@ std::array<Vector2, 3> planarFrame(const std::vector<Vector3>& rest, const Trian
   const Vector3 xAxis = e1.normalized();
   const Vector3 yAxis = e1.cross(e2).cross(e1).normalized();
   return { Vector2::Zero(), Vector2(e1.norm(), 0.0), Vector2(e2.dot(xAxis), e2.dot(yAxis)) };
+}
+
+/// The region's border bulges out of the triangle by this fraction of a
+/// side times t (1 - t) along it (for tracing only): with straight sides,
+/// a visual triangle with all three corners on one path (where the path
+/// turns around it) is flat, and cuts ending beside it would meet there.
+constexpr double BoundaryBulge = 0.02;
+
+/// A vertex's point in the frame, border vertices bulged outward.
+Vector2 bulgedPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
+{
+  Vector2 p = planarPoint(frame, parameters);
+  for (int j = 0; j < 3; ++j)
+  {
+    const int from = (j + 1) % 3, to = (j + 2) % 3;
+    if (parameters[j] != 0.0 || parameters[from] <= 0.0 || parameters[to] <= 0.0)
+      continue;
+    const Vector2 side = frame[to] - frame[from];
+    Vector2 outward(side.y(), -side.x());
+    if (outward.dot(frame[j] - frame[from]) > 0.0)
+      outward = -outward;
+    p += BoundaryBulge * parameters[from] * parameters[to] * outward;
+  }
+  return p;
+}
+
+/// The region in the plane for tracing: border vertices at their
+/// parameters (bulged: the border is strictly convex), inner vertices each
+/// at the average of its neighbours (Tutte). With a strictly convex border
+/// no triangle folds or flattens, so a straight cut crosses a well-defined
+/// chain of triangles, and cuts that do not cross in the collision triangle
+/// (chords between non-interleaved border points) do not cross here.
+std::unordered_map<int, Vector2> tutteEmbedding(
+  const std::unordered_map<int, Vector3>& parameters,
+  const std::vector<Triangle>& triangles,
+  const std::vector<VisualVertexBinding>& bindings,
+  const std::array<Vector2, 3>& frame)
+{
+  std::unordered_map<int, Vector2> planar;
+  std::unordered_map<int, int> inner;
+  std::vector<int> innerVertices;
+  for (const auto& [v, x] : parameters)
+  {
+    if (bindings[v].kind == BindingKind::CollisionTriangle)
+    {
+      inner.emplace(v, static_cast<int>(innerVertices.size()));
+      innerVertices.push_back(v);
+    }
+    else
+      planar.emplace(v, bulgedPoint(frame, x));
+  }
+  if (innerVertices.empty())
+    return planar;
+  std::vector<std::vector<int>> neighbours(innerVertices.size());
+  for (const Triangle& tri : triangles)
+    for (int k = 0; k < 3; ++k)
+    {
+      const auto found = inner.find(tri[k]);
+      if (found == inner.end())
+        continue;
+      for (int w : { tri[(k + 1) % 3], tri[(k + 2) % 3] })
+        if (std::find(neighbours[found->second].begin(), neighbours[found->second].end(), w) ==
+            neighbours[found->second].end())
+          neighbours[found->second].push_back(w);
+    }
+  const int n = static_cast<int>(innerVertices.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
+  for (int i = 0; i < n; ++i)
+  {
+    entries.emplace_back(i, i, static_cast<double>(neighbours[i].size()));
+    for (int w : neighbours[i])
+    {
+      const auto found = inner.find(w);
+      if (found != inner.end())
+        entries.emplace_back(i, found->second, -1.0);
+      else
+        rhs.row(i) += planar.at(w).transpose();
+    }
+  }
+  Eigen::SparseMatrix<double> laplacian(n, n);
+  laplacian.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+  const Eigen::MatrixX2d x = solver.solve(rhs);
+  for (int i = 0; i < n; ++i)
+    planar.emplace(innerVertices[i], x.row(i).transpose());
+  return planar;
 }
 
 double cross2(const Vector2& a, const Vector2& b)
@@ -456,16 +543,24 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
       region.split = static_cast<int>(s);
       region.side = side;
       region.triangles = Regions[split.parent][side];
+      std::vector<Triangle> triangles;
+      for (int t : region.triangles)
+        triangles.push_back(Mesh.triangles[t]);
       for (int v : regionVertices(region.triangles))
       {
         region.parameters.emplace(v, parametersIn(v, split.parent, split.parentCorners));
       }
+      region.planar = tutteEmbedding(region.parameters, triangles, Bindings, frame);
+      for (const auto& corners : split.childCorners)
+        region.pieces.push_back({ { bulgedPoint(frame, corners[0]),
+          bulgedPoint(frame, corners[1]),
+          bulgedPoint(frame, corners[2]) } });
       for (std::size_t e = 0; e < crossing.size(); ++e)
       {
         CrossingPath traced;
         traced.ends = crossing[e];
         traced.barycentric = ends[e];
-        traced.path = traceCut(region, frame, scale, traced, context);
+        traceCut(region, scale, traced, context);
         region.crossings.push_back(std::move(traced));
       }
       context.regions.push_back(std::move(region));
@@ -493,14 +588,25 @@ SurfacePoint CuttableVisualMesh::featurePoint(int vertex,
   return context.edgePoints[context.edgePointOf.at(vertex)].visual[side];
 }
 
-SurfacePath CuttableVisualMesh::traceCut(const RegionCut& region,
-  const std::array<Vector2, 3>& frame,
+void CuttableVisualMesh::traceCut(const RegionCut& region,
   double scale,
-  const CrossingPath& crossing,
+  CrossingPath& crossing,
   const CutContext& context) const
 {
-  const Vector2 from = planarPoint(frame, crossing.barycentric[0]);
-  const Vector2 along = planarPoint(frame, crossing.barycentric[1]) - from;
+  const std::unordered_map<int, Vector2>& planar = region.planar;
+  auto pointOf = [&](const SurfacePoint& p) -> Vector2
+  {
+    return p.isVertex() ? planar.at(p.vertex)
+                        : Vector2((1.0 - p.edgeParameter) * planar.at(p.edgeStart) +
+                                  p.edgeParameter * planar.at(p.edgeEnd));
+  };
+  const SurfacePoint start =
+    featurePoint(crossing.ends[0], crossing.barycentric[0], region.side, context);
+  const SurfacePoint end =
+    featurePoint(crossing.ends[1], crossing.barycentric[1], region.side, context);
+  const Vector2 from = pointOf(start);
+  const Vector2 along = pointOf(end) - from;
+  crossing.planar = { { from, pointOf(end) } };
   const double length = along.norm();
   const double tolerance = OnLineTolerance * scale;
   // Crossing points: nodes 0 and 1 are the cut's ends, then vertices within
@@ -510,10 +616,7 @@ SurfacePath CuttableVisualMesh::traceCut(const RegionCut& region,
     double s;
     SurfacePoint point;
   };
-  std::vector<Node> nodes{
-    { 0.0, featurePoint(crossing.ends[0], crossing.barycentric[0], region.side, context) },
-    { 1.0, featurePoint(crossing.ends[1], crossing.barycentric[1], region.side, context) }
-  };
+  std::vector<Node> nodes{ { 0.0, start }, { 1.0, end } };
   std::unordered_map<int, double> signedDistance;
   std::unordered_map<int, int> vertexNode;
   std::unordered_map<std::uint64_t, int> edgeNode;
@@ -527,7 +630,7 @@ SurfacePath CuttableVisualMesh::traceCut(const RegionCut& region,
   }
   for (const auto& [v, parameters] : region.parameters)
   {
-    const Vector2 x = planarPoint(frame, parameters) - from;
+    const Vector2 x = planar.at(v) - from;
     const double d = cross2(along, x) / length;
     signedDistance.emplace(v, d);
     const double s = x.dot(along) / (length * length);
@@ -571,8 +674,7 @@ SurfacePath CuttableVisualMesh::traceCut(const RegionCut& region,
           lambda = std::max(lambda, BorderClearance);
         if (Bindings[b].kind != BindingKind::CollisionTriangle)
           lambda = std::min(lambda, 1.0 - BorderClearance);
-        const Vector2 x = (1.0 - lambda) * planarPoint(frame, region.parameters.at(a)) +
-                          lambda * planarPoint(frame, region.parameters.at(b)) - from;
+        const Vector2 x = (1.0 - lambda) * planar.at(a) + lambda * planar.at(b) - from;
         // Near an end the parameterisation may put a crossing a little
         // beyond it: kept (only the walk decides what the path visits).
         const double s = x.dot(along) / (length * length);
@@ -600,7 +702,8 @@ SurfacePath CuttableVisualMesh::traceCut(const RegionCut& region,
   // region's parameterisation (rare) makes the order along the line differ
   // from the order through the mesh, and the mesh order is the one that
   // makes a path.
-  SurfacePath traced;
+  SurfacePath& traced = crossing.path;
+  traced.points.clear();
   std::vector<char> visited(nodes.size(), 0);
   int current = 0;
   visited[0] = 1;
@@ -615,24 +718,6 @@ SurfacePath CuttableVisualMesh::traceCut(const RegionCut& region,
       if (next < 0 || candidate == 1 || nodes[candidate].s < nodes[next].s)
         next = candidate;
     }
-    if (next < 0 && std::getenv("TT_DEBUG"))
-    {
-      for (std::size_t n = 0; n < nodes.size(); ++n)
-      {
-        std::fprintf(stderr, "node %zu s=%.4f v=%d e=(%d %d) %.3f visited %d links:", n, nodes[n].s, nodes[n].point.vertex, nodes[n].point.edgeStart, nodes[n].point.edgeEnd, nodes[n].point.edgeParameter, int(visited[n]));
-        for (int l : links[static_cast<int>(n)]) std::fprintf(stderr, " %d", l);
-        std::fprintf(stderr, "\n");
-      }
-      for (int t : region.triangles) {
-        const Triangle& tri = Mesh.triangles[t];
-        bool show = false;
-        for (int v : tri) show = show || (nodes[1].point.isVertex() ? v == nodes[1].point.vertex : (v == nodes[1].point.edgeStart || v == nodes[1].point.edgeEnd));
-        if (!show) continue;
-        std::fprintf(stderr, "end tri %d:", t);
-        for (int v : tri) { auto x = planarPoint(frame, region.parameters.at(v)) - from; std::fprintf(stderr, " %d(d=%.3g s=%.4f k%d)", v, signedDistance.at(v), x.dot(along)/(length*length), int(Bindings[v].kind)); }
-        std::fprintf(stderr, "\n");
-      }
-    }
     if (next < 0)
     {
       throw Error("visual cut of '" + Mesh.name + "': the cut from collision vertex " +
@@ -643,7 +728,6 @@ SurfacePath CuttableVisualMesh::traceCut(const RegionCut& region,
     traced.points.push_back(nodes[next].point);
     current = next;
   }
-  return traced;
 }
 
 //------------------------------------------------------------------------------
@@ -735,8 +819,13 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
     Triangle mapped{ { global[corners[0]], global[corners[1]], global[corners[2]] } };
     for (int k = 0; k < 3; ++k)
     {
-      if (!region.parameters.count(mapped[k]))
-        region.parameters.emplace(mapped[k], parametersOf(region, corners[k]));
+      if (region.parameters.count(mapped[k]))
+        continue;
+      region.parameters.emplace(mapped[k], parametersOf(region, corners[k]));
+      const SurfacePoint& on = remeshed.insertedOn[corners[k] - localCount];
+      region.planar.emplace(mapped[k],
+        (1.0 - on.edgeParameter) * region.planar.at(global[on.edgeStart]) +
+          on.edgeParameter * region.planar.at(global[on.edgeEnd]));
     }
     int t = -1;
     if (j < local.globalTriangle.size())

@@ -152,10 +152,9 @@ private:
     const Vector3& barycentric,
     int side,
     const CutContext& context) const;
-  SurfacePath traceCut(const RegionCut& region,
-    const std::array<Vector2, 3>& frame,
+  void traceCut(const RegionCut& region,
     double scale,
-    const CrossingPath& crossing,
+    CrossingPath& crossing,
     const CutContext& context) const;
 
   void splitEdgePaths(CutContext& context);

@@ -37,6 +37,7 @@ struct CuttableVisualMesh::CrossingPath
   std::array<int, 2> ends{ { -1, -1 } };
   std::array<Vector3, 2> barycentric;
   SurfacePath path;          ///< in visual vertices before re-meshing
+  std::array<Vector2, 2> planar; ///< its ends in the region's plane
   std::vector<int> vertices; ///< the visual vertices it became
 };
 
@@ -46,8 +47,12 @@ struct CuttableVisualMesh::RegionCut
   int split = -1; ///< index into CollisionCutResult::splits
   int side = 0;   ///< 0: -, 1: +
   std::vector<int> triangles;
-  /// Barycentric parameters in the parent of every vertex of the region.
+  /// Barycentric parameters in the parent of every vertex of the region,
+  /// and its point in the plane the cuts are traced in (tutteEmbedding).
   std::unordered_map<int, Vector3> parameters;
+  std::unordered_map<int, Vector2> planar;
+  /// The pieces of the split triangle in that plane.
+  std::vector<std::array<Vector2, 3>> pieces;
   std::vector<CrossingPath> crossings;
   std::vector<int> newTriangles;
 };

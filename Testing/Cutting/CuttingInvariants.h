@@ -13,6 +13,7 @@
 #include <map>
 #include <numeric>
 #include <set>
+#include <sstream>
 
 namespace thintissue
 {
@@ -158,11 +159,23 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
         const int a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
         edgeTriangles[{ std::min(a, b), std::max(a, b) }].push_back(static_cast<int>(t));
       }
+    int shown = 0;
+    auto describe = [&](int v)
+    {
+      const VisualVertexBinding& b = visual.bindings()[v];
+      std::ostringstream text;
+      text << v << "[kind " << int(b.kind) << " element " << b.element;
+      if (b.kind == BindingKind::CollisionEdge)
+        text << " (" << visual.collisionEdges()[b.element][0] << " "
+             << visual.collisionEdges()[b.element][1] << ")";
+      text << " side " << b.side << " t " << b.parameters[1] << "]";
+      return text.str();
+    };
     for (const auto& [edge, triangles] : edgeTriangles)
     {
-      if (triangles.size() == 2)
+      if (triangles.size() == 2 || shown++ > 8)
         continue;
-      failure << "\nedge " << edge.first << "-" << edge.second << ":";
+      failure << "\nedge " << describe(edge.first) << "-" << describe(edge.second) << ":";
       for (int t : triangles)
         failure << " triangle " << t << " (" << mesh.triangles[t][0] << " " << mesh.triangles[t][1]
                 << " " << mesh.triangles[t][2] << ", material " << int(visual.triangleMaterials()[t])
@@ -171,7 +184,6 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
                 << collision.triangles()[visual.triangleRegions()[t]][1] << " "
                 << collision.triangles()[visual.triangleRegions()[t]][2] << "), side "
                 << int(visual.triangleSides()[t]) << ")";
-      break;
     }
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {

@@ -203,10 +203,8 @@ public:
           EXPECT_LE(cutter.collision().vertexCount() - vertices,
             4 * report.collision.changedTriangles.size());
         }
-        catch (const InvalidInputError& error)
+        catch (const InvalidInputError&)
         {
-          if (std::getenv("TT_DEBUG"))
-            std::printf("refused: %s\n", error.what());
           ++Refused;
           ASSERT_EQ(cutter.collision().vertexCount(), vertices);
         }
@@ -349,8 +347,8 @@ TEST(TissueCutterProperty, RandomSweepsCutTheVisualMeshConsistently)
   const VisualCollisionBinding sheetBinding = bindVisualToCollision(sheet.visual, sheet.collision);
   RandomSweeps sheetSweeps(sheet, 4321u);
   sheetSweeps.Binding = &sheetBinding;
-  sheetSweeps.run(60 * sweepScale(), 20);
-  EXPECT_EQ(sheetSweeps.Sweeps, 1200 * sweepScale());
+  sheetSweeps.run(30 * sweepScale(), 20);
+  EXPECT_EQ(sheetSweeps.Sweeps, 600 * sweepScale());
 
   const MeniscusModel meniscus = makeMeniscus();
   const VisualCollisionBinding meniscusBinding =
