@@ -14,6 +14,15 @@ namespace thintissue
 namespace
 {
 
+Vector3 barycentricIn(const std::array<Vector2, 3>& corners, const Vector2& x)
+{
+  Eigen::Matrix2d m;
+  m.col(0) = corners[1] - corners[0];
+  m.col(1) = corners[2] - corners[0];
+  const Vector2 bc = m.inverse() * (x - corners[0]);
+  return Vector3(1.0 - bc.x() - bc.y(), bc.x(), bc.y());
+}
+
 /// The piece (a triangle in the plane) a point lies in, or is nearest to:
 /// the one where its smallest barycentric coordinate is largest.
 int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vector2& x)
@@ -186,7 +195,10 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
         if (b.kind != BindingKind::CollisionTriangle || b.element != split.parent ||
             onCut.count(v))
           continue;
-        const Vector3 y = (region.parameters.at(v).transpose() * inverses[c]).transpose();
+        // The parent parameters of where the vertex lies in the plane it
+        // was cut in (its binding's own, unless a fold was repaired there).
+        const Vector3 x = barycentricIn(region.frame, region.planar.at(v));
+        const Vector3 y = (x.transpose() * inverses[c]).transpose();
         b.element = child;
         b.parameters = y.cwiseMax(0.0) / y.cwiseMax(0.0).sum();
         context.rebound.push_back(v);

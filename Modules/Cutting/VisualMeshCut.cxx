@@ -20,7 +20,7 @@ namespace
 
 constexpr double OnLineTolerance = 1e-7; ///< of the triangle's longest side
 constexpr double CutEndMargin = 1e-7;    ///< of the cut's length
-constexpr double PathSnap = 0.05; ///< of a visual edge: a cut this near a path vertex goes through it
+constexpr double PathSnap = 1e-3; ///< of a visual edge: a cut this near a path vertex goes through it
 constexpr double BorderClearance = 1e-6; ///< of a visual edge, off the border
 
 /// The region triangles as a mesh of their own, with the maps back.
@@ -107,10 +107,11 @@ std::array<Vector2, 3> planarFrame(const std::vector<Vector3>& rest, const Trian
 }
 
 /// The region's border bulges out of the triangle by this fraction of a
-/// side times t (1 - t) along it (for tracing only): with straight sides,
-/// a visual triangle with all three corners on one path (where the path
-/// turns around it) is flat, and cuts ending beside it would meet there.
-constexpr double BoundaryBulge = 0.02;
+/// side times t (1 - t) along it: with straight sides, a visual triangle
+/// with all three corners on one path (where the path turns around it) is
+/// flat, and cuts ending beside it would meet there. Small: the cut moves
+/// by at most a 4,000th of the side near the border.
+constexpr double BoundaryBulge = 1e-3;
 
 /// A vertex's point in the frame, border vertices bulged outward.
 Vector2 bulgedPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
@@ -130,12 +131,9 @@ Vector2 bulgedPoint(const std::array<Vector2, 3>& frame, const Vector3& paramete
   return p;
 }
 
-/// The region in the plane for tracing: border vertices at their
-/// parameters (bulged: the border is strictly convex), inner vertices each
-/// at the average of its neighbours (Tutte). With a strictly convex border
-/// no triangle folds or flattens, so a straight cut crosses a well-defined
-/// chain of triangles, and cuts that do not cross in the collision triangle
-/// (chords between non-interleaved border points) do not cross here.
+/// Tutte's embedding of a region: border vertices at their (bulged)
+/// parameters, inner vertices each at the average of its neighbours. With
+/// a strictly convex border no triangle folds or flattens.
 std::unordered_map<int, Vector2> tutteEmbedding(
   const std::unordered_map<int, Vector3>& parameters,
   const std::vector<Triangle>& triangles,
@@ -196,6 +194,68 @@ std::unordered_map<int, Vector2> tutteEmbedding(
 double cross2(const Vector2& a, const Vector2& b)
 {
   return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Triangles whose orientation in the plane differs from the region's.
+std::vector<int> foldedTriangles(const std::unordered_map<int, Vector2>& planar,
+  const std::vector<Triangle>& triangles)
+{
+  std::vector<double> areas;
+  double total = 0.0;
+  for (const Triangle& t : triangles)
+  {
+    areas.push_back(cross2(planar.at(t[1]) - planar.at(t[0]), planar.at(t[2]) - planar.at(t[0])));
+    total += areas.back();
+  }
+  std::vector<int> folded;
+  for (std::size_t t = 0; t < areas.size(); ++t)
+    if (areas[t] * total <= 0.0)
+      folded.push_back(static_cast<int>(t));
+  return folded;
+}
+
+/// The plane a region is cut in (5.3.2): each vertex at its binding
+/// parameters in the triangle's 2D frame (formula 5-1), the border bulged.
+/// Where the binding's parameterisation folds (rare, on curved tissue) the
+/// inner vertices around the fold are moved to the average of their
+/// neighbours until it unfolds (Tutte's embedding of the whole region if
+/// that does not do); every other vertex stays where its binding puts it.
+std::unordered_map<int, Vector2> regionPlane(const std::unordered_map<int, Vector3>& parameters,
+  const std::vector<Triangle>& triangles,
+  const std::vector<VisualVertexBinding>& bindings,
+  const std::array<Vector2, 3>& frame)
+{
+  std::unordered_map<int, Vector2> planar;
+  for (const auto& [v, x] : parameters)
+    planar.emplace(v, bulgedPoint(frame, x));
+  auto inner = [&](int v) { return bindings[v].kind == BindingKind::CollisionTriangle; };
+  for (int round = 0; round < 32; ++round)
+  {
+    const std::vector<int> folded = foldedTriangles(planar, triangles);
+    if (folded.empty())
+      return planar;
+    std::unordered_map<int, char> moving;
+    for (int t : folded)
+      for (int v : triangles[t])
+        if (inner(v))
+          moving[v] = 1;
+    std::unordered_map<int, std::pair<Vector2, int>> sums;
+    for (const Triangle& t : triangles)
+      for (int k = 0; k < 3; ++k)
+        if (moving.count(t[k]))
+          for (int w : { t[(k + 1) % 3], t[(k + 2) % 3] })
+          {
+            auto& [sum, count] = sums.emplace(t[k], std::make_pair(Vector2::Zero().eval(), 0))
+                                   .first->second;
+            sum += planar.at(w);
+            ++count;
+          }
+    for (const auto& [v, sum] : sums)
+      planar[v] = sum.first / sum.second;
+  }
+  return foldedTriangles(planar, triangles).empty()
+           ? planar
+           : tutteEmbedding(parameters, triangles, bindings, frame);
 }
 
 int cornerIndex(const Vector3& barycentric)
@@ -550,7 +610,8 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
       {
         region.parameters.emplace(v, parametersIn(v, split.parent, split.parentCorners));
       }
-      region.planar = tutteEmbedding(region.parameters, triangles, Bindings, frame);
+      region.planar = regionPlane(region.parameters, triangles, Bindings, frame);
+      region.frame = frame;
       for (const auto& corners : split.childCorners)
         region.pieces.push_back({ { bulgedPoint(frame, corners[0]),
           bulgedPoint(frame, corners[1]),

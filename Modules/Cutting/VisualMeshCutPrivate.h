@@ -48,9 +48,10 @@ struct CuttableVisualMesh::RegionCut
   int side = 0;   ///< 0: -, 1: +
   std::vector<int> triangles;
   /// Barycentric parameters in the parent of every vertex of the region,
-  /// and its point in the plane the cuts are traced in (tutteEmbedding).
+  /// and its point in the plane the cuts are traced in (regionPlane).
   std::unordered_map<int, Vector3> parameters;
   std::unordered_map<int, Vector2> planar;
+  std::array<Vector2, 3> frame; ///< the parent's corners in the plane
   /// The pieces of the split triangle in that plane.
   std::vector<std::array<Vector2, 3>> pieces;
   std::vector<CrossingPath> crossings;

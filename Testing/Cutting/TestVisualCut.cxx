@@ -121,3 +121,109 @@ TEST(VisualCut, RandomSweepsKeepTheVisualMeshValid)
   }
 }
 
+
+namespace
+{
+
+/// Formula 5-1: where a visual vertex projects on the collision mesh.
+Vector3 projected(const CuttableVisualMesh& visual,
+  const CuttableCollisionMesh& collision,
+  int v)
+{
+  const VisualVertexBinding& b = visual.bindings()[v];
+  const auto& x = collision.restPositions();
+  switch (b.kind)
+  {
+    case BindingKind::CollisionVertex:
+      return x[b.element];
+    case BindingKind::CollisionEdge:
+    {
+      const auto& e = visual.collisionEdges()[b.element];
+      return b.parameters[0] * x[e[0]] + b.parameters[1] * x[e[1]];
+    }
+    default:
+    {
+      const Triangle& t = collision.triangles()[b.element];
+      return b.parameters[0] * x[t[0]] + b.parameters[1] * x[t[1]] + b.parameters[2] * x[t[2]];
+    }
+  }
+}
+
+} // namespace
+
+TEST(VisualCut, RebindingKeepsEveryVisualVertexWhereItProjected)
+{
+  // Formula 5-2 for vertices inside split triangles, rescaled accumulated
+  // length for vertices on split edges: the point each projects to on the
+  // collision mesh (formula 5-1) does not move (the second cut crosses the
+  // first).
+  CutPair pair(sheetBinding());
+  const std::size_t before = pair.visual.mesh().vertexCount();
+  std::vector<Vector3> was;
+  for (std::size_t v = 0; v < before; ++v)
+    was.push_back(projected(pair.visual, pair.collision, static_cast<int>(v)));
+  const std::vector<VisualVertexBinding> old = pair.visual.bindings();
+  pair.cut(scalpelAlongY(3.3, -80.0, 80.0));
+  pair.cut(Blade::sweptSegment(Vector3(-80, 7.1, -5), Vector3(-80, 7.1, 5), Vector3(80, 4.2, -5),
+    Vector3(80, 4.2, 5)));
+  int checked = 0, rebound = 0;
+  for (std::size_t v = 0; v < before; ++v)
+  {
+    const VisualVertexBinding& b = pair.visual.bindings()[v];
+    if (b.kind != old[v].kind)
+      continue; // an inner vertex the cut passed through: now on the cut
+    rebound += b.element != old[v].element ? 1 : 0;
+    // Exact but where a cut snapped onto a visual vertex within a thousandth
+    // of a visual edge (the sheet's are 2.5 mm).
+    EXPECT_LT((projected(pair.visual, pair.collision, static_cast<int>(v)) - was[v]).norm(), 3e-3)
+      << "visual vertex " << v << " was kind " << int(old[v].kind) << " element " << old[v].element
+      << " t " << old[v].parameters.transpose() << ", is element " << b.element << " t "
+      << b.parameters.transpose() << " edge "
+      << (b.kind == BindingKind::CollisionEdge ? pair.visual.collisionEdges()[b.element][0] : -1)
+      << "-" << (b.kind == BindingKind::CollisionEdge ? pair.visual.collisionEdges()[b.element][1] : -1);
+    ++checked;
+  }
+  EXPECT_GT(rebound, 100);
+  EXPECT_GT(checked, static_cast<int>(before) - 20);
+  EXPECT_TRUE(visualMeshIsValid(pair.visual, pair.collision));
+}
+
+TEST(VisualCut, CutSurfaceResolutionFollowsTheRowCount)
+{
+  // Fig. 5-12(c): more in-between rows, a finer cut surface.
+  std::vector<std::size_t> triangles, vertices;
+  for (int rows : { 0, 1, 3 })
+  {
+    CutPair pair(sheetBinding(), rows);
+    const std::size_t start = pair.visual.mesh().vertexCount();
+    pair.cut(scalpelAlongY(3.0, -80.0, 80.0));
+    ASSERT_TRUE(visualMeshIsValid(pair.visual, pair.collision)) << rows << " rows";
+    triangles.push_back(pair.visual.cutSurfaceTriangleCount());
+    vertices.push_back(pair.visual.mesh().vertexCount() - start);
+  }
+  EXPECT_LT(triangles[0], triangles[1]);
+  EXPECT_LT(triangles[1], triangles[2]);
+  EXPECT_LT(vertices[0], vertices[1]);
+  EXPECT_LT(vertices[1], vertices[2]);
+}
+
+TEST(VisualCut, ACutAcrossACutSplitsItsCutSurface)
+{
+  // Fig. 5-13: the second cut crosses the first one's opened edges; their
+  // cut surfaces are split by parameter and the sheet falls into four.
+  CutPair pair(sheetBinding(), 2);
+  pair.cut(scalpelAlongY(3.0, -80.0, 80.0));
+  const std::size_t surface = pair.visual.cutSurfaceTriangleCount();
+  pair.cut(Blade::sweptSegment(Vector3(-80, 6.0, -5), Vector3(-80, 6.0, 5), Vector3(80, 6.0, -5),
+    Vector3(80, 6.0, 5)));
+  int pieces = 0;
+  collisionPieces(pair.collision, pieces);
+  EXPECT_EQ(pieces, 4);
+  EXPECT_GT(pair.visual.cutSurfaceTriangleCount(), surface);
+  EXPECT_TRUE(visualMeshIsValid(pair.visual, pair.collision));
+}
+
+TEST(VisualCut, ABadSettingIsRefused)
+{
+  EXPECT_THROW(CuttableVisualMesh(sheetBinding(), VisualCutSettings{ -1 }), InvalidInputError);
+}
