@@ -7,9 +7,11 @@
 // the steak of table 5-2 (when ../shared/data holds it), and the counts of
 // vertices and elements over 6 consecutive cuts (fig. 5-17).
 //
-// The visual cut (5.3.2-5.3.5) is not in these times yet: the thesis's
-// totals (tables 5-2, 5-4, 5-6) include it, so they are not printed as
-// the thesis figure of these cases.
+// With the visual mesh (table 5-4: the sheets of 881 to 53,633 visual
+// vertices on the 65-vertex collision mesh): the visual cut, binding update
+// and cut surface (5.3.2-5.3.4) and the visual-simulation embedding update
+// (5.3.5) too, for a sweep across the sheet and for a short cut through a
+// few collision triangles (the thesis's "per cut").
 #include "BenchmarkRegistry.h"
 
 #include "CorotationalHexFem.h"
@@ -18,6 +20,7 @@
 #include "ThinSheetModel.h"
 #include "TissueBundle.h"
 #include "TissueCutter.h"
+#include "VisualCollisionBinding.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -88,6 +91,40 @@ void cutAndReport(const std::string& name,
   reporter.report(what, "first solver step after the cut", median(stages[4]), "ms");
 }
 
+/// Table 5-4: a cut with the visual mesh, by stage.
+void cutVisualAndReport(const std::string& name,
+  const VisualCollisionBinding& binding,
+  const HexahedralMesh& simulation,
+  const Blade& blade,
+  int repetitions,
+  BenchmarkReporter& reporter)
+{
+  std::vector<double> stages[4];
+  std::size_t changed = 0, cutTriangles = 0;
+  for (int r = 0; r < repetitions; ++r)
+  {
+    CorotationalHexFem fem(simulation, softTissue());
+    TissueCutter cutter(binding, simulation, &fem);
+    const auto report = cutter.cut(blade);
+    changed = report.visual.changedTriangles.size();
+    cutTriangles = report.collision.splits.size();
+    stages[0].push_back(report.collisionMilliseconds + report.simulationMilliseconds +
+                        report.embeddingMilliseconds);
+    stages[1].push_back(report.visualMilliseconds);
+    stages[2].push_back(report.visualEmbeddingMilliseconds);
+    stages[3].push_back(report.totalMilliseconds);
+  }
+  const std::string what = name + " (" + std::to_string(binding.visual.vertexCount()) +
+                           " visual vertices; " + std::to_string(cutTriangles) +
+                           " collision triangles cut, " + std::to_string(changed) +
+                           " visual triangles changed)";
+  reporter.report(what, "collision and simulation cut (5.3.1)", median(stages[0]), "ms");
+  reporter.report(
+    what, "visual cut, binding update and cut surface (5.3.2-5.3.4)", median(stages[1]), "ms");
+  reporter.report(what, "visual-simulation embedding update (5.3.5)", median(stages[2]), "ms");
+  reporter.report(what, "whole cut", median(stages[3]), "ms");
+}
+
 /// Fig. 5-17: counts over 6 consecutive cuts across the tissue.
 void countConsecutiveCuts(const std::string& name,
   const TriangleMesh& collision,
@@ -125,6 +162,27 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
       sheet.collision,
       sheet.simulation,
       repetitions,
+      reporter);
+  }
+  for (int model = 1; model <= (context.quick ? 1 : 4); ++model)
+  {
+    const TissueModel visualSheet = makeThinSheet(thesisSheetVisualResolution(model));
+    const VisualCollisionBinding binding =
+      bindVisualToCollision(visualSheet.visual, visualSheet.collision);
+    const BoundingBox box = boundingBoxOf(visualSheet.collision.positions);
+    const int runs = model <= 2 ? repetitions : std::max(3, repetitions / 4);
+    const std::string name = "thin sheet, visual model " + std::to_string(model);
+    cutVisualAndReport(
+      name + ", sweep across", binding, visualSheet.simulation, scalpelAcross(box, 0.53), runs, reporter);
+    const Vector3 centre = box.center();
+    const Vector3 a = centre + Vector3(0.03, -0.08, 0.0).cwiseProduct(box.sizes());
+    const Vector3 b = centre + Vector3(0.03, 0.08, 0.0).cwiseProduct(box.sizes());
+    const Vector3 up = Vector3::UnitZ() * box.sizes().norm();
+    cutVisualAndReport(name + ", short cut",
+      binding,
+      visualSheet.simulation,
+      Blade::sweptSegment(a - up, a + up, b - up, b + up),
+      runs,
       reporter);
   }
   const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
