@@ -34,8 +34,17 @@ namespace
 vtkSmartPointer<vtkPolyData> thintissue::boundVisualPolyData(
   const thintissue::VisualCollisionBinding& binding)
 {
-  vtkSmartPointer<vtkPolyData> output = thintissue::toPolyData(binding.visual);
-  const auto vertexCount = static_cast<vtkIdType>(binding.vertices.size());
+  return boundVisualPolyData(
+    binding.visual, binding.vertices, binding.triangleRegion, binding.triangleSide);
+}
+
+vtkSmartPointer<vtkPolyData> thintissue::boundVisualPolyData(const TriangleMesh& visual,
+  const std::vector<VisualVertexBinding>& vertices,
+  const std::vector<int>& triangleRegion,
+  const std::vector<std::int8_t>& triangleSide)
+{
+  vtkSmartPointer<vtkPolyData> output = thintissue::toPolyData(visual);
+  const auto vertexCount = static_cast<vtkIdType>(vertices.size());
   vtkNew<vtkUnsignedCharArray> kinds;
   kinds->SetName("BindingKind");
   kinds->SetNumberOfTuples(vertexCount);
@@ -51,7 +60,7 @@ vtkSmartPointer<vtkPolyData> thintissue::boundVisualPolyData(
   parameters->SetNumberOfTuples(vertexCount);
   for (vtkIdType v = 0; v < vertexCount; ++v)
   {
-    const thintissue::VisualVertexBinding& vertex = binding.vertices[static_cast<std::size_t>(v)];
+    const thintissue::VisualVertexBinding& vertex = vertices[static_cast<std::size_t>(v)];
     kinds->SetValue(v, static_cast<unsigned char>(vertex.kind));
     elements->SetValue(v, vertex.element);
     sides->SetValue(v, static_cast<signed char>(vertex.side));
@@ -62,7 +71,7 @@ vtkSmartPointer<vtkPolyData> thintissue::boundVisualPolyData(
   output->GetPointData()->AddArray(sides);
   output->GetPointData()->AddArray(parameters);
 
-  const auto triangleCount = static_cast<vtkIdType>(binding.triangleRegion.size());
+  const auto triangleCount = static_cast<vtkIdType>(triangleRegion.size());
   vtkNew<vtkIntArray> regions;
   regions->SetName("CollisionTriangle");
   regions->SetNumberOfTuples(triangleCount);
@@ -71,9 +80,8 @@ vtkSmartPointer<vtkPolyData> thintissue::boundVisualPolyData(
   regionSides->SetNumberOfTuples(triangleCount);
   for (vtkIdType t = 0; t < triangleCount; ++t)
   {
-    regions->SetValue(t, binding.triangleRegion[static_cast<std::size_t>(t)]);
-    regionSides->SetValue(
-      t, static_cast<signed char>(binding.triangleSide[static_cast<std::size_t>(t)]));
+    regions->SetValue(t, triangleRegion[static_cast<std::size_t>(t)]);
+    regionSides->SetValue(t, static_cast<signed char>(triangleSide[static_cast<std::size_t>(t)]));
   }
   output->GetCellData()->AddArray(regions);
   output->GetCellData()->AddArray(regionSides);

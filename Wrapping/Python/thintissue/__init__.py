@@ -9,3 +9,4 @@ from .ThinTissueVTKCore import *  # noqa: F401,F403
 from .ThinTissueVTKModels import *  # noqa: F401,F403
 from .ThinTissueVTKSolver import *  # noqa: F401,F403
 from .ThinTissueVTKBinding import *  # noqa: F401,F403
+from .ThinTissueVTKCutting import *  # noqa: F401,F403

@@ -1,0 +1,219 @@
+#include "vtkThinTissueCutFilter.h"
+
+#include "ThinTissueError.h"
+#include "TissueCutter.h"
+#include "vtkBindingConversion.h"
+#include "vtkThinTissueConversion.h"
+
+#include <vtkCellData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkLogger.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkTrivialProducer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
+#include <exception>
+
+vtkStandardNewMacro(vtkThinTissueCutFilter);
+
+/// The cut tissue and what it was built from.
+struct vtkThinTissueCutFilter::Internals
+{
+  std::unique_ptr<thintissue::TissueCutter> Cutter;
+  vtkMTimeType BuiltFrom = 0; ///< newest input MTime when built
+  vtkMTimeType LastBlade = 0; ///< MTime of the last blade applied
+};
+
+vtkThinTissueCutFilter::vtkThinTissueCutFilter()
+  : Tissue(new Internals)
+{
+  this->SetNumberOfInputPorts(4);
+  this->SetNumberOfOutputPorts(3);
+}
+
+vtkThinTissueCutFilter::~vtkThinTissueCutFilter() = default;
+
+void vtkThinTissueCutFilter::SetCollisionData(vtkPolyData* collision)
+{
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(collision);
+  this->SetInputConnection(CollisionInputPort, producer->GetOutputPort());
+}
+
+void vtkThinTissueCutFilter::SetSimulationData(vtkUnstructuredGrid* simulation)
+{
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(simulation);
+  this->SetInputConnection(SimulationInputPort, producer->GetOutputPort());
+}
+
+void vtkThinTissueCutFilter::SetBladeData(vtkPolyData* blade)
+{
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(blade);
+  this->SetInputConnection(BladeInputPort, producer->GetOutputPort());
+}
+
+void vtkThinTissueCutFilter::ResetTissue()
+{
+  this->Tissue->Cutter.reset();
+  this->Modified();
+}
+
+int vtkThinTissueCutFilter::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(),
+    port == SimulationInputPort ? "vtkUnstructuredGrid" : "vtkPolyData");
+  if (port == BladeInputPort)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+int vtkThinTissueCutFilter::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(),
+    port == SimulationPort ? "vtkUnstructuredGrid" : "vtkPolyData");
+  return 1;
+}
+
+vtkPolyData* vtkThinTissueCutFilter::GetVisualOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(VisualPort));
+}
+
+vtkPolyData* vtkThinTissueCutFilter::GetCollisionOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(CollisionPort));
+}
+
+vtkUnstructuredGrid* vtkThinTissueCutFilter::GetSimulationOutput()
+{
+  return vtkUnstructuredGrid::SafeDownCast(this->GetOutputDataObject(SimulationPort));
+}
+
+namespace
+{
+
+/// Output 0: the cut visual surface with its binding and materials. Edge
+/// bindings refer to the sorted edges of the cut collision mesh, as those
+/// of vtkVisualCollisionBindingFilter do.
+vtkSmartPointer<vtkPolyData> visualOutputOf(const thintissue::CuttableVisualMesh& visual,
+  const thintissue::CuttableCollisionMesh& collision)
+{
+  std::vector<std::array<int, 2>> edges;
+  for (const thintissue::Triangle& t : collision.triangles())
+    for (int k = 0; k < 3; ++k)
+      edges.push_back({ { std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]) } });
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<thintissue::VisualVertexBinding> bindings = visual.bindings();
+  for (thintissue::VisualVertexBinding& b : bindings)
+  {
+    if (b.kind == thintissue::BindingKind::CollisionEdge)
+      b.element = static_cast<int>(
+        std::lower_bound(edges.begin(), edges.end(), visual.collisionEdges()[b.element]) -
+        edges.begin());
+  }
+  vtkSmartPointer<vtkPolyData> output = thintissue::boundVisualPolyData(
+    visual.mesh(), bindings, visual.triangleRegions(), visual.triangleSides());
+  vtkNew<vtkUnsignedCharArray> materials;
+  materials->SetName("Material");
+  materials->SetNumberOfTuples(static_cast<vtkIdType>(visual.triangleMaterials().size()));
+  for (std::size_t t = 0; t < visual.triangleMaterials().size(); ++t)
+  {
+    materials->SetValue(
+      static_cast<vtkIdType>(t), static_cast<unsigned char>(visual.triangleMaterials()[t]));
+  }
+  output->GetCellData()->AddArray(materials);
+  return output;
+}
+
+} // namespace
+
+int vtkThinTissueCutFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  this->LastErrorMessage.clear();
+  vtkPolyData* visualInput = vtkPolyData::GetData(inputVector[VisualInputPort], 0);
+  vtkPolyData* collisionInput = vtkPolyData::GetData(inputVector[CollisionInputPort], 0);
+  vtkUnstructuredGrid* simulationInput =
+    vtkUnstructuredGrid::GetData(inputVector[SimulationInputPort], 0);
+  vtkPolyData* blade = vtkPolyData::GetData(inputVector[BladeInputPort], 0);
+  vtkPolyData* visualOutput = vtkPolyData::GetData(outputVector, VisualPort);
+  vtkPolyData* collisionOutput = vtkPolyData::GetData(outputVector, CollisionPort);
+  vtkUnstructuredGrid* simulationOutput = vtkUnstructuredGrid::GetData(outputVector, SimulationPort);
+  Internals& tissue = *this->Tissue;
+  const vtkMTimeType tissueTime = std::max(
+    { visualInput->GetMTime(), collisionInput->GetMTime(), simulationInput->GetMTime() });
+  try
+  {
+    if (!tissue.Cutter || tissueTime > tissue.BuiltFrom)
+    {
+      thintissue::TissueCutterSettings settings;
+      settings.collision.snapFraction = this->SnapFraction;
+      settings.visual.cutSurfaceRows = this->CutSurfaceRows;
+      const thintissue::VisualCollisionBinding binding =
+        thintissue::bindingFromPolyData(visualInput, collisionInput, settings.radiusArrayName);
+      tissue.Cutter = std::make_unique<thintissue::TissueCutter>(binding,
+        thintissue::fromUnstructuredGrid(simulationInput, "hexahedra"),
+        nullptr,
+        settings);
+      tissue.BuiltFrom = tissueTime;
+      tissue.LastBlade = 0; // a blade present now cuts the new tissue
+      this->NumberOfCuts = 0;
+      this->LastCutMilliseconds = 0.0;
+      this->LastCutChangedTissue = 0;
+    }
+    if (blade && blade->GetMTime() > tissue.LastBlade && blade->GetNumberOfCells() > 0)
+    {
+      tissue.LastBlade = blade->GetMTime();
+      const thintissue::Blade cut =
+        thintissue::Blade::fromSurface(thintissue::fromPolyData(blade, "blade"));
+      const thintissue::TissueCutReport report = tissue.Cutter->cut(cut);
+      ++this->NumberOfCuts;
+      this->LastCutMilliseconds = report.totalMilliseconds;
+      this->LastCutChangedTissue = report.changed();
+      vtkLogF(TRACE,
+        "cut %d: %zu collision triangles split, %zu visual triangles changed, %.3f ms",
+        this->NumberOfCuts,
+        report.collision.splits.size(),
+        report.visual.changedTriangles.size(),
+        report.totalMilliseconds);
+    }
+  }
+  catch (const std::exception& error)
+  {
+    this->LastErrorMessage = error.what();
+    vtkErrorMacro(<< this->LastErrorMessage);
+    if (!tissue.Cutter)
+    {
+      visualOutput->Initialize();
+      collisionOutput->Initialize();
+      simulationOutput->Initialize();
+      return 0;
+    }
+  }
+  visualOutput->ShallowCopy(
+    visualOutputOf(tissue.Cutter->visual(), tissue.Cutter->collision()));
+  collisionOutput->ShallowCopy(thintissue::toPolyData(tissue.Cutter->collisionMesh()));
+  simulationOutput->ShallowCopy(thintissue::toUnstructuredGrid(tissue.Cutter->simulation()));
+  return this->LastErrorMessage.empty() ? 1 : 0;
+}
+
+void vtkThinTissueCutFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "CutSurfaceRows: " << this->CutSurfaceRows << "\n";
+  os << indent << "SnapFraction: " << this->SnapFraction << "\n";
+  os << indent << "NumberOfCuts: " << this->NumberOfCuts << "\n";
+  os << indent << "LastCutMilliseconds: " << this->LastCutMilliseconds << "\n";
+  os << indent << "LastCutChangedTissue: " << this->LastCutChangedTissue << "\n";
+  os << indent << "LastErrorMessage: " << this->LastErrorMessage << "\n";
+}
