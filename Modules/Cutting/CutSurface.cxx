@@ -176,8 +176,7 @@ void CuttableVisualMesh::buildStrip(const CuttableCollisionMesh& collision,
   rows.push_back(openPart(paths.sides[0], a, b));
   std::vector<std::vector<double>> at(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r)
-    for (int w : rows[r])
-      at[r].push_back(edgeParameter(w, a, b));
+    at[r] = pathParameters(rows[r], a, b);
   std::vector<Triangle> triangles;
   for (std::size_t r = 0; r + 1 < rows.size(); ++r)
     zipRows(rows[r], at[r], rows[r + 1], at[r + 1], triangles);
@@ -254,12 +253,10 @@ void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision
       std::vector<double> all;
       for (int side = 0; side < 2; ++side)
       {
-        for (int w : paths.sides[side])
-        {
-          at[side].push_back(edgeParameter(w, a, b));
-          if (at[side].back() > ColumnMerge && at[side].back() < 1.0 - ColumnMerge)
-            all.push_back(at[side].back());
-        }
+        at[side] = pathParameters(paths.sides[side], a, b);
+        for (double t : at[side])
+          if (t > ColumnMerge && t < 1.0 - ColumnMerge)
+            all.push_back(t);
       }
       std::sort(all.begin(), all.end());
       // Both sides often share a parameter (up to round-off): one column.

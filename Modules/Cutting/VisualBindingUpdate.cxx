@@ -258,18 +258,18 @@ void CuttableVisualMesh::finishEdgePoints(CutContext& context)
       }
       before.sides[side].assign(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(at) + 1);
       after.sides[side].assign(p.rbegin(), p.rend() - static_cast<std::ptrdiff_t>(at));
-      for (std::size_t j = 1; j < at; ++j)
+      // Vertices a shared segment binds to another edge keep that binding.
+      for (std::size_t j = 1; j + 1 < p.size(); ++j)
       {
         const int v = p[j];
-        bindToEdge(v, point.a, point.vertex, edgeParameter(v, point.a, point.b) / point.u,
-          Bindings[v].side);
-        context.rebound.push_back(v);
-      }
-      for (std::size_t j = at + 1; j + 1 < p.size(); ++j)
-      {
-        const int v = p[j];
-        const double t = (edgeParameter(v, point.a, point.b) - point.u) / (1.0 - point.u);
-        bindToEdge(v, point.vertex, point.b, t, Bindings[v].side);
+        if (j == at || Bindings[v].kind != BindingKind::CollisionEdge ||
+            !boundToEdge(v, point.a, point.b))
+          continue;
+        const double t = edgeParameter(v, point.a, point.b);
+        if (j < at)
+          bindToEdge(v, point.a, point.vertex, t / point.u, Bindings[v].side);
+        else
+          bindToEdge(v, point.vertex, point.b, (t - point.u) / (1.0 - point.u), Bindings[v].side);
         context.rebound.push_back(v);
       }
     }

@@ -440,6 +440,48 @@ double CuttableVisualMesh::edgeParameter(int v, int a, int b) const
                           std::to_string(b) + ")");
 }
 
+bool CuttableVisualMesh::boundToEdge(int v, int a, int b) const
+{
+  const VisualVertexBinding& binding = Bindings[v];
+  if (binding.kind == BindingKind::CollisionVertex)
+    return binding.element == a || binding.element == b;
+  return binding.kind == BindingKind::CollisionEdge &&
+         edgeKey(Edges[binding.element][0], Edges[binding.element][1]) == edgeKey(a, b);
+}
+
+std::vector<double> CuttableVisualMesh::pathParameters(const std::vector<int>& path,
+  int a,
+  int b) const
+{
+  // Vertices bound to the edge (or its ends) carry their parameter; a
+  // vertex of a segment this path shares with another edge's path (the
+  // binding lets paths touch) is bound to that edge: it gets the parameter
+  // its accumulated length puts it at between its bound neighbours.
+  std::vector<double> at(path.size(), -1.0);
+  std::vector<double> length(path.size(), 0.0);
+  for (std::size_t i = 0; i < path.size(); ++i)
+  {
+    if (i > 0)
+      length[i] = length[i - 1] + (Mesh.positions[path[i]] - Mesh.positions[path[i - 1]]).norm();
+    if (boundToEdge(path[i], a, b))
+      at[i] = edgeParameter(path[i], a, b);
+  }
+  at.front() = std::max(at.front(), 0.0);
+  at.back() = at.back() < 0.0 ? 1.0 : at.back();
+  for (std::size_t i = 1; i + 1 < path.size(); ++i)
+  {
+    if (at[i] >= 0.0)
+      continue;
+    std::size_t next = i + 1;
+    while (at[next] < 0.0)
+      ++next;
+    const double span = length[next] - length[i - 1];
+    const double s = span > 0.0 ? (length[i] - length[i - 1]) / span : 0.5;
+    at[i] = at[i - 1] + s * (at[next] - at[i - 1]);
+  }
+  return at;
+}
+
 void CuttableVisualMesh::bindToEdge(int v, int a, int b, double fromA, int side)
 {
   VisualVertexBinding& binding = Bindings[v];
@@ -470,6 +512,26 @@ Vector3 CuttableVisualMesh::parametersIn(int v, int triangle, const Triangle& co
       const double t = edgeParameter(v, corners[k], next);
       result[k] = 1.0 - t;
       result[(k + 1) % 3] = t;
+      return result;
+    }
+  }
+  // On a segment one of the triangle's paths shares with another edge's.
+  for (int k = 0; k < 3; ++k)
+  {
+    const int from = corners[k], to = corners[(k + 1) % 3];
+    const auto paths = Paths.find(edgeKey(from, to));
+    if (paths == Paths.end())
+      continue;
+    for (const std::vector<int>& p : paths->second.sides)
+    {
+      const auto found = std::find(p.begin(), p.end(), v);
+      if (found == p.end())
+        continue;
+      const double t = pathParameters(p, std::min(from, to), std::max(from, to))
+        [static_cast<std::size_t>(found - p.begin())];
+      const double fromStart = from < to ? t : 1.0 - t;
+      result[k] = 1.0 - fromStart;
+      result[(k + 1) % 3] = fromStart;
       return result;
     }
   }
@@ -537,11 +599,12 @@ void CuttableVisualMesh::splitEdgePaths(CutContext& context)
     for (int side = 0; side < 2; ++side)
     {
       const std::vector<int>& p = found->second.sides[side];
+      const std::vector<double> at = pathParameters(p, point.a, point.b);
       std::size_t i = 0;
-      while (i + 2 < p.size() && edgeParameter(p[i + 1], point.a, point.b) <= point.u)
+      while (i + 2 < p.size() && at[i + 1] <= point.u)
         ++i;
-      const double from = edgeParameter(p[i], point.a, point.b);
-      const double to = edgeParameter(p[i + 1], point.a, point.b);
+      const double from = at[i];
+      const double to = at[i + 1];
       double lambda = to > from ? (point.u - from) / (to - from) : 0.5;
       point.pathPosition[side] = static_cast<int>(i);
       if (lambda < PathSnap && i > 0)
@@ -639,14 +702,25 @@ std::vector<int> CuttableVisualMesh::regionVertices(const std::vector<int>& tria
   return vertices;
 }
 
-SurfacePoint CuttableVisualMesh::featurePoint(int vertex,
+SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
+  int vertex,
   const Vector3& barycentric,
-  int side,
   const CutContext& context) const
 {
-  if (cornerIndex(barycentric) >= 0)
-    return SurfacePoint::atVertex(Paired[vertex][side]);
-  return context.edgePoints[context.edgePointOf.at(vertex)].visual[side];
+  const int corner = cornerIndex(barycentric);
+  if (corner < 0)
+    return context.edgePoints[context.edgePointOf.at(vertex)].visual[region.side];
+  const int paired = Paired[vertex][region.side];
+  if (region.parameters.count(paired))
+    return SurfacePoint::atVertex(paired);
+  // The paths from this corner share their first segment with another
+  // edge's path, so the region starts where they part: at its vertex
+  // nearest the corner.
+  int nearest = -1;
+  for (const auto& [v, x] : region.parameters)
+    if (nearest < 0 || x[corner] > region.parameters.at(nearest)[corner])
+      nearest = v;
+  return SurfacePoint::atVertex(nearest);
 }
 
 void CuttableVisualMesh::traceCut(const RegionCut& region,
@@ -662,9 +736,8 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
                                   p.edgeParameter * planar.at(p.edgeEnd));
   };
   const SurfacePoint start =
-    featurePoint(crossing.ends[0], crossing.barycentric[0], region.side, context);
-  const SurfacePoint end =
-    featurePoint(crossing.ends[1], crossing.barycentric[1], region.side, context);
+    featurePoint(region, crossing.ends[0], crossing.barycentric[0], context);
+  const SurfacePoint end = featurePoint(region, crossing.ends[1], crossing.barycentric[1], context);
   const Vector2 from = pointOf(start);
   const Vector2 along = pointOf(end) - from;
   crossing.planar = { { from, pointOf(end) } };

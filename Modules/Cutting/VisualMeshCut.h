@@ -145,12 +145,14 @@ private:
   void freeTriangle(int t);
   void compactTriangles();
   double edgeParameter(int v, int a, int b) const;
+  bool boundToEdge(int v, int a, int b) const;
+  std::vector<double> pathParameters(const std::vector<int>& path, int a, int b) const;
   void bindToEdge(int v, int a, int b, double fromA, int side);
 
   std::vector<int> regionVertices(const std::vector<int>& triangles) const;
-  SurfacePoint featurePoint(int vertex,
+  SurfacePoint featurePoint(const RegionCut& region,
+    int vertex,
     const Vector3& barycentric,
-    int side,
     const CutContext& context) const;
   void traceCut(const RegionCut& region,
     double scale,

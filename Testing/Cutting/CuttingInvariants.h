@@ -244,6 +244,34 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
       }
     }
   }
+  // The visual cut lies on the collision cut: a visual vertex bound to a
+  // collision edge is beside it (across the surface, within twice the
+  // longest visual edge: the paths join visual vertices paired with the
+  // collision vertices, not exactly above them, and on coarse collision
+  // meshes bend away from the straight edge).
+  double longest = 0.0;
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      longest = std::max(longest, (mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).norm());
+  const auto& rest = collision.restPositions();
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+  {
+    const VisualVertexBinding& b = visual.bindings()[v];
+    if (b.kind != BindingKind::CollisionEdge)
+      continue;
+    const auto& e = edges[b.element];
+    const Vector3 onEdge = b.parameters[0] * rest[e[0]] + b.parameters[1] * rest[e[1]];
+    const int t = collision.trianglesOfEdge(e[0], e[1])[0];
+    const Triangle& tri = collision.triangles()[t];
+    const Vector3 normal =
+      (rest[tri[1]] - rest[tri[0]]).cross(rest[tri[2]] - rest[tri[0]]).normalized();
+    Vector3 offset = mesh.positions[v] - onEdge;
+    offset -= offset.dot(normal) * normal;
+    if (offset.norm() > 2.0 * longest)
+      return ::testing::AssertionFailure()
+             << "visual vertex " << v << " bound to collision edge (" << e[0] << ", " << e[1]
+             << ") lies " << offset.norm() << " beside it (longest visual edge " << longest << ")";
+  }
   int collisionPieceCount = 0;
   collisionPieces(collision, collisionPieceCount);
   if (static_cast<int>(report.connectedComponents) != collisionPieceCount)
