@@ -148,13 +148,23 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
   for (const CrossingPath& crossing : region.crossings)
     for (std::size_t i = 0; i + 1 < crossing.vertices.size(); ++i)
       onCutEdge[edgeKey(crossing.vertices[i], crossing.vertices[i + 1])] = 1;
-  std::unordered_map<std::uint64_t, std::vector<int>> trianglesOfEdge;
+  // Triangles beside each edge: (edge, triangle) pairs sorted by edge.
+  std::vector<std::pair<std::uint64_t, int>> sides;
+  sides.reserve(3 * region.newTriangles.size());
   for (std::size_t i = 0; i < region.newTriangles.size(); ++i)
   {
     const Triangle& tri = Mesh.triangles[region.newTriangles[i]];
     for (int k = 0; k < 3; ++k)
-      trianglesOfEdge[edgeKey(tri[k], tri[(k + 1) % 3])].push_back(static_cast<int>(i));
+      sides.emplace_back(edgeKey(tri[k], tri[(k + 1) % 3]), static_cast<int>(i));
   }
+  std::sort(sides.begin(), sides.end());
+  auto trianglesBeside = [&sides](std::uint64_t key)
+  {
+    return std::equal_range(sides.begin(),
+      sides.end(),
+      std::make_pair(key, 0),
+      [](const auto& x, const auto& y) { return x.first < y.first; });
+  };
   std::vector<int> piece(region.newTriangles.size(), -1);
   for (std::size_t seed = 0; seed < piece.size(); ++seed)
   {
@@ -173,11 +183,12 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
         const std::uint64_t key = edgeKey(tri[k], tri[(k + 1) % 3]);
         if (onCutEdge.count(key))
           continue;
-        for (int other : trianglesOfEdge[key])
-          if (piece[other] < 0)
+        const auto [begin, end] = trianglesBeside(key);
+        for (auto other = begin; other != end; ++other)
+          if (piece[other->second] < 0)
           {
-            piece[other] = static_cast<int>(seed);
-            members.push_back(other);
+            piece[other->second] = static_cast<int>(seed);
+            members.push_back(other->second);
           }
       }
     }

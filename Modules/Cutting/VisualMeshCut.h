@@ -139,6 +139,7 @@ private:
   struct CrossingPath;
 
   static std::uint64_t edgeKey(int a, int b);
+  void reserveRoom();
   int edgeIndex(int a, int b);
   int addVertexCopy(int source);
   int addTriangle(const Triangle& corners, int region, int side, VisualMaterial material);
