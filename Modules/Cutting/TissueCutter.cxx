@@ -99,6 +99,12 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
   // one copy per branch, as if its tears had been cut.
   InitialSeparation = Branches.separateAll(Collision, Simulation);
   updateSolver(InitialSeparation);
+  Active.assign(Collision.triangleCount(), 1);
+  for (const Triangle& t : Collision.triangles())
+  {
+    const auto& x = Collision.restPositions();
+    InitialArea += 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
+  }
   CollisionEmbedding.embed(Simulation, Collision.restPositions());
   for (int v = 0; v < static_cast<int>(Collision.vertexCount()); ++v)
   {
@@ -297,6 +303,11 @@ TissueCutReport TissueCutter::cut(const Blade& blade)
     report.totalMilliseconds = millisecondsSince(start);
     return report;
   }
+  // Pieces of a removed piece's triangles stay removed.
+  Active.resize(Collision.triangleCount(), 1);
+  for (const auto& split : report.collision.splits)
+    for (int child : split.children)
+      Active[child] = Active[split.parent];
   const auto simulationStart = Clock::now();
   report.simulation = Branches.update(Collision, report.collision, Simulation);
   updateSolver(report.simulation);
@@ -313,6 +324,7 @@ TissueCutReport TissueCutter::cut(const Blade& blade)
     report.reembeddedVisualVertices = reembedVisual(report);
     report.visualEmbeddingMilliseconds = millisecondsSince(reembedStart);
   }
+  handleFreePieces(report);
   report.totalMilliseconds = millisecondsSince(start);
   return report;
 }

@@ -26,12 +26,43 @@ namespace thintissue
 
 class CorotationalHexFem;
 
+/// What becomes of a piece cut free (one attached to nothing, or, when
+/// nothing is attached, any but the largest piece).
+enum class FreePieceHandling
+{
+  Keep,    ///< stays in the tissue and moves on its own
+  Drop,    ///< removed from the tissue
+  HandOver ///< removed, and returned as its own body (TissueCutReport::handedOver)
+};
+
+/// A piece cut free as a body of its own: its meshes, rest and current.
+struct TissuePiece
+{
+  /// The visual surface with its cut surfaces at the current positions
+  /// (empty without a visual mesh); rest positions in `visualRest`.
+  TriangleMesh visual;
+  std::vector<Vector3> visualRest;
+  /// The collision mesh (rest) with its radius array, and its current
+  /// vertex positions.
+  TriangleMesh collision;
+  std::vector<Vector3> collisionCurrent;
+  /// Its hexahedra (rest nodes, fixed-node mask) and their nodes' current
+  /// positions.
+  HexahedralMesh simulation;
+  std::vector<Vector3> nodeCurrent;
+  double collisionArea = 0.0;
+};
+
 struct TissueCutterSettings
 {
   CollisionCutSettings collision;
   std::string radiusArrayName = "Radius";
   /// Used when the cutter is made from a binding.
   VisualCutSettings visual;
+  FreePieceHandling freePieces = FreePieceHandling::Keep;
+  /// Free pieces whose collision area is below this fraction of the
+  /// tissue's are removed whole, whatever freePieces says (0: none).
+  double fragmentAreaFraction = 0.0;
 };
 
 /// What one cut did, and what it cost.
@@ -45,6 +76,10 @@ struct TissueCutReport
   /// whose embedding changed (new ones included).
   VisualCutResult visual;
   std::vector<int> reembeddedVisualVertices;
+  /// Pieces removed by this cut (free pieces dropped or handed over, and
+  /// fragments), and those handed over.
+  int removedPieces = 0;
+  std::vector<TissuePiece> handedOver;
   /// Milliseconds: blade test and collision re-meshing; hexahedron
   /// duplication and solver update; embedding updates; the whole cut.
   double collisionMilliseconds = 0.0;
@@ -95,6 +130,15 @@ public:
   /// The collision mesh as a TriangleMesh with its radius array.
   TriangleMesh collisionMesh() const;
 
+  /// Whether a collision triangle is still part of the tissue (a removed
+  /// piece's are not: they neither collide nor show, and its nodes are held
+  /// still in the solver).
+  bool isActive(int collisionTriangle) const { return Active[collisionTriangle] != 0; }
+  std::size_t activeTriangleCount() const;
+  /// Per visual triangle: whether it belongs to an active collision
+  /// triangle's region.
+  std::vector<char> activeVisualTriangles() const;
+
   bool hasVisual() const { return HasVisual; }
   /// The visual mesh with its cut surfaces (rest) and bindings; empty
   /// without a binding.
@@ -108,6 +152,9 @@ private:
   std::vector<int> reembedCollision(const TissueCutReport& report);
   std::vector<int> reembedVisual(const TissueCutReport& report);
   bool moveToBranchCopy(int visualVertex);
+  void handleFreePieces(TissueCutReport& report);
+  TissuePiece extractPiece(const std::vector<int>& triangles) const;
+  void removePiece(const std::vector<int>& triangles);
 
   TissueCutterSettings Settings;
   CuttableCollisionMesh Collision;
@@ -121,6 +168,9 @@ private:
   HexahedralEmbedding VisualEmbedding;
   /// Per original hexahedron: the visual vertices embedded in it or a copy.
   std::vector<std::vector<int>> VisualOfHexahedron;
+  /// Per collision triangle: 1 while it is part of the tissue.
+  std::vector<char> Active;
+  double InitialArea = 0.0;
 };
 
 } // namespace thintissue

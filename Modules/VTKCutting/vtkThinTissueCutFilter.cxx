@@ -103,9 +103,10 @@ namespace
 /// Output 0: the cut visual surface with its binding and materials. Edge
 /// bindings refer to the sorted edges of the cut collision mesh, as those
 /// of vtkVisualCollisionBindingFilter do.
-vtkSmartPointer<vtkPolyData> visualOutputOf(const thintissue::CuttableVisualMesh& visual,
-  const thintissue::CuttableCollisionMesh& collision)
+vtkSmartPointer<vtkPolyData> visualOutputOf(const thintissue::TissueCutter& cutter)
 {
+  const thintissue::CuttableVisualMesh& visual = cutter.visual();
+  const thintissue::CuttableCollisionMesh& collision = cutter.collision();
   std::vector<std::array<int, 2>> edges;
   for (const thintissue::Triangle& t : collision.triangles())
     for (int k = 0; k < 3; ++k)
@@ -120,16 +121,28 @@ vtkSmartPointer<vtkPolyData> visualOutputOf(const thintissue::CuttableVisualMesh
         std::lower_bound(edges.begin(), edges.end(), visual.collisionEdges()[b.element]) -
         edges.begin());
   }
-  vtkSmartPointer<vtkPolyData> output = thintissue::boundVisualPolyData(
-    visual.mesh(), bindings, visual.triangleRegions(), visual.triangleSides());
+  // Only the triangles of pieces still in the tissue.
+  thintissue::TriangleMesh mesh = visual.mesh();
+  std::vector<int> regions;
+  std::vector<std::int8_t> sides;
   vtkNew<vtkUnsignedCharArray> materials;
   materials->SetName("Material");
-  materials->SetNumberOfTuples(static_cast<vtkIdType>(visual.triangleMaterials().size()));
-  for (std::size_t t = 0; t < visual.triangleMaterials().size(); ++t)
+  const std::vector<char> active = cutter.activeVisualTriangles();
+  mesh.triangles.clear();
+  mesh.textureCorners.clear();
+  for (std::size_t t = 0; t < active.size(); ++t)
   {
-    materials->SetValue(
-      static_cast<vtkIdType>(t), static_cast<unsigned char>(visual.triangleMaterials()[t]));
+    if (!active[t])
+      continue;
+    mesh.triangles.push_back(visual.mesh().triangles[t]);
+    if (visual.mesh().hasTextureCoordinates())
+      mesh.textureCorners.push_back(visual.mesh().textureCorners[t]);
+    regions.push_back(visual.triangleRegions()[t]);
+    sides.push_back(visual.triangleSides()[t]);
+    materials->InsertNextValue(static_cast<unsigned char>(visual.triangleMaterials()[t]));
   }
+  vtkSmartPointer<vtkPolyData> output =
+    thintissue::boundVisualPolyData(mesh, bindings, regions, sides);
   output->GetCellData()->AddArray(materials);
   return output;
 }
@@ -159,6 +172,10 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
       thintissue::TissueCutterSettings settings;
       settings.collision.snapFraction = this->SnapFraction;
       settings.visual.cutSurfaceRows = this->CutSurfaceRows;
+      settings.freePieces = this->FreePieces == DROP_FREE_PIECES
+        ? thintissue::FreePieceHandling::Drop
+        : thintissue::FreePieceHandling::Keep;
+      settings.fragmentAreaFraction = this->FragmentAreaFraction;
       const thintissue::VisualCollisionBinding binding =
         thintissue::bindingFromPolyData(visualInput, collisionInput, settings.radiusArrayName);
       tissue.Cutter = std::make_unique<thintissue::TissueCutter>(binding,
@@ -200,9 +217,13 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
       return 0;
     }
   }
-  visualOutput->ShallowCopy(
-    visualOutputOf(tissue.Cutter->visual(), tissue.Cutter->collision()));
-  collisionOutput->ShallowCopy(thintissue::toPolyData(tissue.Cutter->collisionMesh()));
+  visualOutput->ShallowCopy(visualOutputOf(*tissue.Cutter));
+  thintissue::TriangleMesh collision = tissue.Cutter->collisionMesh();
+  collision.triangles.clear();
+  for (std::size_t t = 0; t < tissue.Cutter->collision().triangleCount(); ++t)
+    if (tissue.Cutter->isActive(static_cast<int>(t)))
+      collision.triangles.push_back(tissue.Cutter->collision().triangles()[t]);
+  collisionOutput->ShallowCopy(thintissue::toPolyData(collision));
   simulationOutput->ShallowCopy(thintissue::toUnstructuredGrid(tissue.Cutter->simulation()));
   return this->LastErrorMessage.empty() ? 1 : 0;
 }
@@ -212,6 +233,9 @@ void vtkThinTissueCutFilter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "CutSurfaceRows: " << this->CutSurfaceRows << "\n";
   os << indent << "SnapFraction: " << this->SnapFraction << "\n";
+  os << indent << "FreePieces: "
+     << (this->FreePieces == DROP_FREE_PIECES ? "DROP_FREE_PIECES" : "KEEP_FREE_PIECES") << "\n";
+  os << indent << "FragmentAreaFraction: " << this->FragmentAreaFraction << "\n";
   os << indent << "NumberOfCuts: " << this->NumberOfCuts << "\n";
   os << indent << "LastCutMilliseconds: " << this->LastCutMilliseconds << "\n";
   os << indent << "LastCutChangedTissue: " << this->LastCutChangedTissue << "\n";

@@ -20,7 +20,8 @@
  * after ResetTissue()); each update whose blade input was modified since
  * the last cut applies that blade once (a blade present when the tissue
  * is built cuts it). CutSurfaceRows and SnapFraction
- * take effect when the tissue is built.
+ * take effect when the tissue is built, as do FreePieces and
+ * FragmentAreaFraction.
  *
  * Output port 0: the visual surface with its cut surfaces (rest
  * positions), with the binding arrays of the input (the binding after the
@@ -92,6 +93,28 @@ public:
   vtkGetMacro(SnapFraction, double);
   ///@}
 
+  /// What becomes of a piece cut free of every fixed node (or, when none
+  /// is fixed, of the largest piece).
+  enum FreePieceHandlings
+  {
+    KEEP_FREE_PIECES = 0,
+    DROP_FREE_PIECES = 1
+  };
+
+  ///@{
+  /// KEEP_FREE_PIECES (the default) or DROP_FREE_PIECES: a dropped piece
+  /// leaves the outputs.
+  vtkSetClampMacro(FreePieces, int, KEEP_FREE_PIECES, DROP_FREE_PIECES);
+  vtkGetMacro(FreePieces, int);
+  ///@}
+
+  ///@{
+  /// Free pieces whose collision area is below this fraction of the
+  /// tissue's leave the outputs whatever FreePieces says. Default 0.
+  vtkSetClampMacro(FragmentAreaFraction, double, 0.0, 1.0);
+  vtkGetMacro(FragmentAreaFraction, double);
+  ///@}
+
   /// Forgets the cuts: the next update builds the tissue from the inputs.
   void ResetTissue();
 
@@ -123,6 +146,8 @@ protected:
 
   int CutSurfaceRows = 1;
   double SnapFraction = 0.15;
+  int FreePieces = KEEP_FREE_PIECES;
+  double FragmentAreaFraction = 0.0;
   int NumberOfCuts = 0;
   double LastCutMilliseconds = 0.0;
   vtkTypeBool LastCutChangedTissue = 0;

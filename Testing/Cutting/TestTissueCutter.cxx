@@ -6,6 +6,7 @@
 #include "CuttingInvariants.h"
 #include "MeniscusModel.h"
 #include "SoftTissueMaterial.h"
+#include "MeshValidation.h"
 #include "ThinSheetModel.h"
 #include "ThinTissueTestSupport.h"
 #include "MeshImport.h"
@@ -16,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 
@@ -413,4 +415,128 @@ TEST(TissueCutterProperty, TheUncutSteakIsAValidStartForTheVisualCut)
     "steak collision", b.collisionPositions, b.collisionTriangles, b.collisionRadii);
   CuttableVisualMesh visual(b);
   EXPECT_TRUE(visualMeshIsValid(visual, collision));
+}
+
+namespace
+{
+
+/// A punch's bite: a closed outline of radius r around (x, y), through the
+/// sheet's thickness.
+Blade biteAt(double x, double y, double r)
+{
+  std::vector<Vector3> low, high;
+  for (int i = 0; i < 16; ++i)
+  {
+    const double a = 2.0 * M_PI * i / 16.0;
+    const Vector3 p(x + r * std::cos(a), y + r * std::sin(a), 0.0);
+    low.push_back(p - Vector3(0, 0, 10));
+    high.push_back(p + Vector3(0, 0, 10));
+  }
+  return Blade::sweptOutline(low, high);
+}
+
+struct BoundSheet
+{
+  TissueModel model = makeThinSheet(ThinSheetParameters{});
+  VisualCollisionBinding binding = bindVisualToCollision(model.visual, model.collision);
+};
+
+const BoundSheet& boundSheet()
+{
+  static const BoundSheet sheet;
+  return sheet;
+}
+
+} // namespace
+
+TEST(TissueCutterSeparation, APieceCutFreeIsKeptDroppedOrHandedOver)
+{
+  // The sheet is attached along its left and right edges; a bite in the
+  // middle cuts a disk free of both.
+  const BoundSheet& sheet = boundSheet();
+  for (FreePieceHandling handling :
+    { FreePieceHandling::Keep, FreePieceHandling::Drop, FreePieceHandling::HandOver })
+  {
+    CorotationalHexFem fem(sheet.model.simulation, softTissue(), smallSteps());
+    TissueCutterSettings settings;
+    settings.freePieces = handling;
+    TissueCutter cutter(sheet.binding, sheet.model.simulation, &fem, settings);
+    const auto report = cutter.cut(biteAt(2.0, 3.0, 28.0));
+    ASSERT_TRUE(report.changed());
+    EXPECT_TRUE(cutterIsConsistent(cutter, sheet.model.simulation));
+    int pieces = 0;
+    collisionPieces(cutter.collision(), pieces);
+    EXPECT_EQ(pieces, 2);
+    const bool removed = handling != FreePieceHandling::Keep;
+    EXPECT_EQ(report.removedPieces, removed ? 1 : 0);
+    EXPECT_EQ(cutter.activeTriangleCount() < cutter.collision().triangleCount(), removed);
+    EXPECT_EQ(report.handedOver.size(), handling == FreePieceHandling::HandOver ? 1u : 0u);
+    const auto visualActive = cutter.activeVisualTriangles();
+    EXPECT_EQ(std::count(visualActive.begin(), visualActive.end(), 0) > 0, removed);
+    // A removed piece is held still: pushing everything up moves the rest only.
+    for (std::size_t n = 0; n < fem.nodeCount(); ++n)
+      fem.setExternalForce(n, Vector3(0, 0, 1e-4));
+    for (int s = 0; s < 5; ++s)
+      ASSERT_TRUE(fem.step().ok);
+    const auto current = cutter.currentCollisionPositions();
+    for (std::size_t t = 0; t < cutter.collision().triangleCount(); ++t)
+    {
+      const int v = cutter.collision().triangles()[t][0];
+      if (!cutter.isActive(static_cast<int>(t)))
+      {
+        EXPECT_NEAR((current[v] - cutter.collision().restPositions()[v]).norm(), 0.0, 1e-12);
+      }
+    }
+  }
+}
+
+TEST(TissueCutterSeparation, AHandedOverPieceIsABodyOfItsOwn)
+{
+  const BoundSheet& sheet = boundSheet();
+  CorotationalHexFem fem(sheet.model.simulation, softTissue(), smallSteps());
+  TissueCutterSettings settings;
+  settings.freePieces = FreePieceHandling::HandOver;
+  TissueCutter cutter(sheet.binding, sheet.model.simulation, &fem, settings);
+  const auto report = cutter.cut(biteAt(2.0, 3.0, 28.0));
+  ASSERT_EQ(report.handedOver.size(), 1u);
+  const TissuePiece& piece = report.handedOver.front();
+  // Its visual surface is closed (the cut surface goes with it).
+  const MeshValidationReport visual = validateTriangleMesh(piece.visual, 0.0);
+  EXPECT_EQ(visual.borderEdges.count, 0u) << visual.toString();
+  EXPECT_EQ(visual.nonManifoldEdges.count, 0u) << visual.toString();
+  EXPECT_EQ(visual.connectedComponents, 1u);
+  EXPECT_EQ(piece.visualRest.size(), piece.visual.vertexCount());
+  // About the bite's disk (the collision cut follows the outline roughly).
+  EXPECT_NEAR(piece.collisionArea, M_PI * 28.0 * 28.0, 0.35 * M_PI * 28.0 * 28.0);
+  EXPECT_EQ(piece.collisionCurrent.size(), piece.collision.vertexCount());
+  EXPECT_TRUE(piece.collision.pointAttributes.has("Radius"));
+  piece.simulation.checkConsistency();
+  EXPECT_GT(piece.simulation.hexahedronCount(), 0u);
+  EXPECT_EQ(piece.simulation.fixedNodeCount(), 0u);
+  // It can be simulated on its own.
+  CorotationalHexFem own(piece.simulation, softTissue(), smallSteps());
+  EXPECT_TRUE(own.step().ok);
+}
+
+TEST(TissueCutterSeparation, FragmentsBelowTheSizeAreRemovedWholeAndAttachedPiecesStay)
+{
+  const BoundSheet& sheet = boundSheet();
+  CorotationalHexFem fem(sheet.model.simulation, softTissue(), smallSteps());
+  TissueCutterSettings settings;
+  settings.fragmentAreaFraction = 0.4; // the disk is about a quarter of the sheet
+  settings.freePieces = FreePieceHandling::Drop;
+  TissueCutter cutter(sheet.binding, sheet.model.simulation, &fem, settings);
+  // Cut in two: each half hangs from its own edge, nothing is free.
+  auto report = cutter.cut(Blade::sweptSegment(
+    Vector3(30, -80, -10), Vector3(30, -80, 10), Vector3(30, 80, -10), Vector3(30, 80, 10)));
+  EXPECT_EQ(report.removedPieces, 0);
+  EXPECT_EQ(cutter.activeTriangleCount(), cutter.collision().triangleCount());
+  settings.freePieces = FreePieceHandling::Keep;
+  TissueCutter keeping(sheet.binding, sheet.model.simulation, nullptr, settings);
+  report = keeping.cut(biteAt(-10.0, 0.0, 28.0));
+  // The disk (and any sliver the outline cut off) goes, though free pieces
+  // are kept; the attached rest stays.
+  EXPECT_GE(report.removedPieces, 1);
+  EXPECT_LT(keeping.activeTriangleCount(), keeping.collision().triangleCount());
+  EXPECT_GT(keeping.activeTriangleCount(), keeping.collision().triangleCount() / 2);
 }

@@ -193,3 +193,23 @@ TEST(vtkThinTissueCutFilter, PrintSelfNamesTheSettings)
   EXPECT_NE(text.str().find("CutSurfaceRows: 1"), std::string::npos);
   EXPECT_NE(text.str().find("SnapFraction: 0.15"), std::string::npos);
 }
+
+TEST(vtkThinTissueCutFilter, ADroppedPieceLeavesTheOutputs)
+{
+  // Two cuts across the sheet free its middle strip from both attached
+  // edges; dropped, the outputs keep the two attached halves.
+  for (int drop : { 0, 1 })
+  {
+    SheetPipeline pipeline;
+    pipeline.cut->SetFreePieces(drop);
+    pipeline.cut->SetBladeData(scalpel(-12.0, -80.0, 80.0));
+    pipeline.cut->Update();
+    pipeline.cut->SetBladeData(scalpel(14.0, -80.0, 80.0));
+    pipeline.cut->Update();
+    ASSERT_STREQ(pipeline.cut->GetLastErrorMessage(), "");
+    const auto visual = validate(pipeline.cut->GetVisualOutput());
+    EXPECT_EQ(visual.connectedComponents, drop ? 2u : 3u);
+    EXPECT_EQ(visual.borderEdges.count, 0u) << visual.toString();
+    EXPECT_EQ(validate(pipeline.cut->GetCollisionOutput()).connectedComponents, drop ? 2u : 3u);
+  }
+}

@@ -1,0 +1,193 @@
+// Separation (thesis 5.3, the cut-through case): after a cut, the pieces
+// of the collision mesh are found; a piece attached to nothing (no fixed
+// node) is cut free and kept, dropped or handed over as its own body, and
+// small fragments are removed whole. A removed piece is deactivated: its
+// collision and visual triangles are no longer part of the tissue and its
+// nodes are held still in the solver (pieces share no node, so nothing
+// else is held).
+#include "TissueCutter.h"
+
+#include "CorotationalHexFem.h"
+#include "UnionFind.h"
+
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+
+namespace thintissue
+{
+
+namespace
+{
+
+double triangleArea(const std::vector<Vector3>& x, const Triangle& t)
+{
+  return 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
+}
+
+/// Re-indexes the used entries of a list: old index -> new, in first-use
+/// order.
+struct Renumbering
+{
+  std::unordered_map<int, int> newOf;
+  std::vector<int> oldOf;
+  int operator()(int old)
+  {
+    const auto [it, added] = newOf.emplace(old, static_cast<int>(oldOf.size()));
+    if (added)
+      oldOf.push_back(old);
+    return it->second;
+  }
+};
+
+} // namespace
+
+std::size_t TissueCutter::activeTriangleCount() const
+{
+  return static_cast<std::size_t>(std::count(Active.begin(), Active.end(), 1));
+}
+
+std::vector<char> TissueCutter::activeVisualTriangles() const
+{
+  std::vector<char> active(Visual.mesh().triangleCount(), 1);
+  for (std::size_t t = 0; t < active.size(); ++t)
+    active[t] = Active[Visual.triangleRegions()[t]];
+  return active;
+}
+
+void TissueCutter::handleFreePieces(TissueCutReport& report)
+{
+  // Pieces of the active collision mesh, through shared edges.
+  const auto& triangles = Collision.triangles();
+  const int count = static_cast<int>(triangles.size());
+  UnionFind pieces(triangles.size());
+  for (int t = 0; t < count; ++t)
+  {
+    if (!Active[t])
+      continue;
+    for (int k = 0; k < 3; ++k)
+      for (int other : Collision.trianglesOfEdge(triangles[t][k], triangles[t][(k + 1) % 3]))
+        if (other > t && Active[other])
+          pieces.unite(t, other);
+  }
+  std::map<int, std::vector<int>> members;
+  std::map<int, double> area;
+  std::map<int, bool> attached;
+  for (int t = 0; t < count; ++t)
+  {
+    if (!Active[t])
+      continue;
+    const int root = pieces.find(t);
+    members[root].push_back(t);
+    area[root] += triangleArea(Collision.restPositions(), triangles[t]);
+    for (int h : Branches.hexahedraOf(t))
+      for (int node : Simulation.hexahedra[h])
+        attached[root] = attached[root] || (Solver ? Solver->isFixed(node) : Simulation.isFixed(node));
+  }
+  if (members.size() < 2)
+    return;
+  // With nothing attached anywhere, the largest piece is the tissue.
+  int largest = members.begin()->first;
+  bool anyAttached = false;
+  for (const auto& [root, list] : members)
+  {
+    anyAttached = anyAttached || attached[root];
+    largest = area[root] > area[largest] ? root : largest;
+  }
+  for (const auto& [root, list] : members)
+  {
+    const bool free = anyAttached ? !attached[root] : root != largest;
+    if (!free)
+      continue;
+    const bool fragment = area[root] < Settings.fragmentAreaFraction * InitialArea;
+    if (!fragment && Settings.freePieces == FreePieceHandling::Keep)
+      continue;
+    if (!fragment && Settings.freePieces == FreePieceHandling::HandOver)
+      report.handedOver.push_back(extractPiece(list));
+    removePiece(list);
+    ++report.removedPieces;
+  }
+}
+
+TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
+{
+  TissuePiece piece;
+  const std::vector<Vector3> current = currentCollisionPositions();
+  Renumbering collisionVertices;
+  piece.collision.name = Collision.name() + " piece";
+  for (int t : triangles)
+  {
+    const Triangle& tri = Collision.triangles()[t];
+    piece.collision.triangles.push_back(
+      { { collisionVertices(tri[0]), collisionVertices(tri[1]), collisionVertices(tri[2]) } });
+    piece.collisionArea += triangleArea(Collision.restPositions(), tri);
+  }
+  std::vector<double> radii;
+  for (int v : collisionVertices.oldOf)
+  {
+    piece.collision.positions.push_back(Collision.restPositions()[v]);
+    piece.collisionCurrent.push_back(current[v]);
+    radii.push_back(Collision.radii()[v]);
+  }
+  piece.collision.pointAttributes.set(Settings.radiusArrayName, 1, radii);
+
+  // Its hexahedra: those holding its triangles (pieces share no node).
+  std::vector<int> hexahedra;
+  for (int t : triangles)
+    hexahedra.insert(hexahedra.end(), Branches.hexahedraOf(t).begin(), Branches.hexahedraOf(t).end());
+  std::sort(hexahedra.begin(), hexahedra.end());
+  hexahedra.erase(std::unique(hexahedra.begin(), hexahedra.end()), hexahedra.end());
+  Renumbering nodes;
+  piece.simulation.name = Simulation.name + " piece";
+  for (int h : hexahedra)
+  {
+    Hexahedron corners;
+    for (int a = 0; a < 8; ++a)
+      corners[a] = nodes(Simulation.hexahedra[h][a]);
+    piece.simulation.hexahedra.push_back(corners);
+  }
+  for (int n : nodes.oldOf)
+  {
+    piece.simulation.nodes.push_back(Simulation.nodes[n]);
+    piece.simulation.fixedNodes.push_back(Simulation.isFixed(n) ? 1 : 0);
+    piece.nodeCurrent.push_back(Solver ? Solver->positions()[n] : Simulation.nodes[n]);
+  }
+  if (!HasVisual)
+    return piece;
+  std::vector<char> inPiece(Collision.triangleCount(), 0);
+  for (int t : triangles)
+    inPiece[t] = 1;
+  const std::vector<Vector3> visualCurrent = currentVisualPositions();
+  Renumbering visualVertices;
+  piece.visual.name = Visual.mesh().name + " piece";
+  for (std::size_t t = 0; t < Visual.mesh().triangleCount(); ++t)
+  {
+    if (!inPiece[Visual.triangleRegions()[t]])
+      continue;
+    const Triangle& tri = Visual.mesh().triangles[t];
+    piece.visual.triangles.push_back(
+      { { visualVertices(tri[0]), visualVertices(tri[1]), visualVertices(tri[2]) } });
+  }
+  for (int v : visualVertices.oldOf)
+  {
+    piece.visual.positions.push_back(visualCurrent[v]);
+    piece.visualRest.push_back(Visual.mesh().positions[v]);
+  }
+  piece.visual.computeVertexNormals();
+  return piece;
+}
+
+void TissueCutter::removePiece(const std::vector<int>& triangles)
+{
+  for (int t : triangles)
+  {
+    Active[t] = 0;
+    if (!Solver)
+      continue;
+    for (int h : Branches.hexahedraOf(t))
+      for (int node : Simulation.hexahedra[h])
+        Solver->setFixed(static_cast<std::size_t>(node), true);
+  }
+}
+
+} // namespace thintissue
