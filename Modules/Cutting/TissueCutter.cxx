@@ -315,10 +315,24 @@ TissueCutReport TissueCutter::cut(const Blade& blade)
   const auto embeddingStart = Clock::now();
   report.reembeddedCollisionVertices = reembedCollision(report);
   report.embeddingMilliseconds = millisecondsSince(embeddingStart);
-  if (HasVisual && report.changed())
+  if (HasVisual && !VisualFailed && report.changed())
   {
     const auto visualStart = Clock::now();
-    report.visual = Visual.cut(Collision, report.collision);
+    try
+    {
+      report.visual = Visual.cut(Collision, report.collision);
+    }
+    catch (const std::exception& error)
+    {
+      // The collision and simulation meshes are cut already: the tissue
+      // goes on without its visual cut rather than stop (the visual mesh
+      // keeps its last state and its embedding).
+      VisualFailed = true;
+      report.visualError = "visual cut of '" + Visual.mesh().name + "' failed: " + error.what() +
+                           "; the visual mesh is no longer cut";
+      report.totalMilliseconds = millisecondsSince(start);
+      return report;
+    }
     report.visualMilliseconds = millisecondsSince(visualStart);
     const auto reembedStart = Clock::now();
     report.reembeddedVisualVertices = reembedVisual(report);

@@ -19,6 +19,8 @@
 #include "HexahedralEmbedding.h"
 #include "HexahedronDuplication.h"
 #include "VisualMeshCut.h"
+
+#include <string>
 #include "ThinTissueCuttingModule.h"
 
 namespace thintissue
@@ -80,6 +82,11 @@ struct TissueCutReport
   /// fragments), and those handed over.
   int removedPieces = 0;
   std::vector<TissuePiece> handedOver;
+  /// Set when the visual cut failed (a binding it cannot follow, e.g. paths
+  /// sharing segments on some prepared tissues): the collision and
+  /// simulation meshes are cut; the visual mesh stays as it was and is not
+  /// cut again (TissueCutter::visualFailed()).
+  std::string visualError;
   /// Milliseconds: blade test and collision re-meshing; hexahedron
   /// duplication and solver update; embedding updates; the whole cut.
   double collisionMilliseconds = 0.0;
@@ -140,6 +147,8 @@ public:
   std::vector<char> activeVisualTriangles() const;
 
   bool hasVisual() const { return HasVisual; }
+  /// Whether a visual cut failed (see TissueCutReport::visualError).
+  bool visualFailed() const { return VisualFailed; }
   /// The visual mesh with its cut surfaces (rest) and bindings; empty
   /// without a binding.
   const CuttableVisualMesh& visual() const { return Visual; }
@@ -164,6 +173,7 @@ private:
   HexahedronDuplicationResult InitialSeparation;
   CorotationalHexFem* Solver = nullptr;
   bool HasVisual = false;
+  bool VisualFailed = false;
   CuttableVisualMesh Visual;
   HexahedralEmbedding VisualEmbedding;
   /// Per original hexahedron: the visual vertices embedded in it or a copy.

@@ -197,6 +197,10 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
       ++this->NumberOfCuts;
       this->LastCutMilliseconds = report.totalMilliseconds;
       this->LastCutChangedTissue = report.changed();
+      if (!report.visualError.empty())
+      {
+        vtkWarningMacro(<< report.visualError);
+      }
       vtkLogF(TRACE,
         "cut %d: %zu collision triangles split, %zu visual triangles changed, %.3f ms",
         this->NumberOfCuts,
