@@ -108,8 +108,8 @@ void cutVisualAndReport(const std::string& name,
     const auto report = cutter.cut(blade);
     changed = report.visual.changedTriangles.size();
     cutTriangles = report.collision.splits.size();
-    stages[0].push_back(report.collisionMilliseconds + report.simulationMilliseconds +
-                        report.embeddingMilliseconds);
+    stages[0].push_back(
+      report.collisionMilliseconds + report.simulationMilliseconds + report.embeddingMilliseconds);
     stages[1].push_back(report.visualMilliseconds);
     stages[2].push_back(report.visualEmbeddingMilliseconds);
     stages[3].push_back(report.totalMilliseconds);
@@ -172,8 +172,12 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
     const BoundingBox box = boundingBoxOf(visualSheet.collision.positions);
     const int runs = model <= 2 ? repetitions : std::max(3, repetitions / 4);
     const std::string name = "thin sheet, visual model " + std::to_string(model);
-    cutVisualAndReport(
-      name + ", sweep across", binding, visualSheet.simulation, scalpelAcross(box, 0.53), runs, reporter);
+    cutVisualAndReport(name + ", sweep across",
+      binding,
+      visualSheet.simulation,
+      scalpelAcross(box, 0.53),
+      runs,
+      reporter);
     const Vector3 centre = box.center();
     const Vector3 a = centre + Vector3(0.03, -0.08, 0.0).cwiseProduct(box.sizes());
     const Vector3 b = centre + Vector3(0.03, 0.08, 0.0).cwiseProduct(box.sizes());

@@ -8,8 +8,8 @@
 #include "VisualMeshCutPrivate.h"
 
 #include <algorithm>
-#include <unordered_map>
 #include <cmath>
+#include <unordered_map>
 
 namespace thintissue
 {
@@ -260,9 +260,9 @@ void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision
       }
       std::sort(all.begin(), all.end());
       // Both sides often share a parameter (up to round-off): one column.
-      all.erase(std::unique(all.begin(),
-                  all.end(),
-                  [](double x, double y) { return std::abs(x - y) < ColumnMerge; }),
+      all.erase(
+        std::unique(
+          all.begin(), all.end(), [](double x, double y) { return std::abs(x - y) < ColumnMerge; }),
         all.end());
       strip.rows.resize(static_cast<std::size_t>(rows));
       for (int r = 0; r < rows; ++r)

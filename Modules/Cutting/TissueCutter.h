@@ -20,8 +20,8 @@
 #include "HexahedronDuplication.h"
 #include "VisualMeshCut.h"
 
-#include <string>
 #include "ThinTissueCuttingModule.h"
+#include <string>
 
 namespace thintissue
 {

@@ -82,7 +82,8 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
     area[root] += triangleArea(Collision.restPositions(), triangles[t]);
     for (int h : Branches.hexahedraOf(t))
       for (int node : Simulation.hexahedra[h])
-        attached[root] = attached[root] || (Solver ? Solver->isFixed(node) : Simulation.isFixed(node));
+        attached[root] =
+          attached[root] || (Solver ? Solver->isFixed(node) : Simulation.isFixed(node));
   }
   if (members.size() < 2)
     return;
@@ -134,7 +135,8 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
   // Its hexahedra: those holding its triangles (pieces share no node).
   std::vector<int> hexahedra;
   for (int t : triangles)
-    hexahedra.insert(hexahedra.end(), Branches.hexahedraOf(t).begin(), Branches.hexahedraOf(t).end());
+    hexahedra.insert(
+      hexahedra.end(), Branches.hexahedraOf(t).begin(), Branches.hexahedraOf(t).end());
   std::sort(hexahedra.begin(), hexahedra.end());
   hexahedra.erase(std::unique(hexahedra.begin(), hexahedra.end()), hexahedra.end());
   Renumbering nodes;

@@ -203,8 +203,7 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
       for (int v : Mesh.triangles[t])
       {
         VisualVertexBinding& b = Bindings[v];
-        if (b.kind != BindingKind::CollisionTriangle || b.element != split.parent ||
-            onCut.count(v))
+        if (b.kind != BindingKind::CollisionTriangle || b.element != split.parent || onCut.count(v))
           continue;
         // The parent parameters of where the vertex lies in the plane it
         // was cut in (its binding's own, unless a fold was repaired there).
@@ -304,15 +303,14 @@ void CuttableVisualMesh::finishEdgePoints(CutContext& context)
 //------------------------------------------------------------------------------
 // Where the collision mesh opened, the visual vertices bound to an opened
 // collision vertex or edge get one copy per side of the opening.
-void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision,
-  CutContext& context)
+void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, CutContext& context)
 {
   struct Claim
   {
     int triangle;
     int corner;
     int vertex;
-    int element;  ///< collision vertex, or edge (x, y) in `edge`
+    int element; ///< collision vertex, or edge (x, y) in `edge`
     std::array<int, 2> edge;
   };
   std::vector<Claim> claims;
@@ -373,9 +371,8 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision,
     for (; j < claims.size() && claims[j].vertex == v; ++j)
     {
       const Claim& claim = claims[j];
-      const int code = claim.element >= 0
-                         ? 2 * claim.element
-                         : 2 * edgeIndex(claim.edge[0], claim.edge[1]) + 1;
+      const int code =
+        claim.element >= 0 ? 2 * claim.element : 2 * edgeIndex(claim.edge[0], claim.edge[1]) + 1;
       auto [it, added] = context.copies.emplace(std::make_pair(v, code), -1);
       if (added)
       {

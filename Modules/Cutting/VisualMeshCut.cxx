@@ -20,7 +20,8 @@ namespace
 
 constexpr double OnLineTolerance = 1e-7; ///< of the triangle's longest side
 constexpr double CutEndMargin = 1e-7;    ///< of the cut's length
-constexpr double PathSnap = 1e-3; ///< of a visual edge: a cut this near a path vertex goes through it
+constexpr double PathSnap =
+  1e-3; ///< of a visual edge: a cut this near a path vertex goes through it
 constexpr double BorderClearance = 1e-6; ///< of a visual edge, off the border
 
 /// The region triangles as a mesh of their own, with the maps back.
@@ -58,9 +59,8 @@ LocalMesh extractTriangles(const TriangleMesh& mesh, const std::vector<int>& tri
         for (std::size_t a = 0; a < names.size(); ++a)
         {
           const AttributeArray& array = mesh.pointAttributes.get(names[a]);
-          attributes[a].insert(attributes[a].end(),
-            array.element(v),
-            array.element(v) + array.components);
+          attributes[a].insert(
+            attributes[a].end(), array.element(v), array.element(v) + array.components);
         }
       }
       corners[k] = it->second;
@@ -134,8 +134,7 @@ Vector2 bulgedPoint(const std::array<Vector2, 3>& frame, const Vector3& paramete
 /// Tutte's embedding of a region: border vertices at their (bulged)
 /// parameters, inner vertices each at the average of its neighbours. With
 /// a strictly convex border no triangle folds or flattens.
-std::unordered_map<int, Vector2> tutteEmbedding(
-  const std::unordered_map<int, Vector3>& parameters,
+std::unordered_map<int, Vector2> tutteEmbedding(const std::unordered_map<int, Vector3>& parameters,
   const std::vector<Triangle>& triangles,
   const std::vector<VisualVertexBinding>& bindings,
   const std::array<Vector2, 3>& frame)
@@ -245,8 +244,8 @@ std::unordered_map<int, Vector2> regionPlane(const std::unordered_map<int, Vecto
         if (moving.count(t[k]))
           for (int w : { t[(k + 1) % 3], t[(k + 2) % 3] })
           {
-            auto& [sum, count] = sums.emplace(t[k], std::make_pair(Vector2::Zero().eval(), 0))
-                                   .first->second;
+            auto& [sum, count] =
+              sums.emplace(t[k], std::make_pair(Vector2::Zero().eval(), 0)).first->second;
             sum += planar.at(w);
             ++count;
           }
@@ -291,8 +290,8 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
   const std::string label = "visual mesh '" + Mesh.name + "'";
   if (settings.cutSurfaceRows < 0)
   {
-    throw InvalidInputError(label + ": cut surface rows " +
-                            std::to_string(settings.cutSurfaceRows) + " (must be >= 0)");
+    throw InvalidInputError(
+      label + ": cut surface rows " + std::to_string(settings.cutSurfaceRows) + " (must be >= 0)");
   }
   if (Bindings.size() != Mesh.vertexCount() || TriangleRegion.size() != Mesh.triangleCount() ||
       TriangleSide.size() != Mesh.triangleCount() ||
@@ -449,7 +448,8 @@ void CuttableVisualMesh::compactTriangles()
 double CuttableVisualMesh::edgeParameter(int v, int a, int b) const
 {
   const VisualVertexBinding& binding = Bindings[v];
-  if (binding.kind == BindingKind::CollisionVertex && (binding.element == a || binding.element == b))
+  if (binding.kind == BindingKind::CollisionVertex &&
+      (binding.element == a || binding.element == b))
     return binding.element == a ? 0.0 : 1.0;
   if (binding.kind == BindingKind::CollisionEdge && Edges[binding.element][0] == std::min(a, b) &&
       Edges[binding.element][1] == std::max(a, b))
@@ -525,8 +525,8 @@ Vector3 CuttableVisualMesh::parametersIn(int v, int triangle, const Triangle& co
       return result;
     }
     const int next = corners[(k + 1) % 3];
-    if (b.kind == BindingKind::CollisionEdge && edgeKey(corners[k], next) ==
-                                                  edgeKey(Edges[b.element][0], Edges[b.element][1]))
+    if (b.kind == BindingKind::CollisionEdge &&
+        edgeKey(corners[k], next) == edgeKey(Edges[b.element][0], Edges[b.element][1]))
     {
       const double t = edgeParameter(v, corners[k], next);
       result[k] = 1.0 - t;
@@ -546,8 +546,8 @@ Vector3 CuttableVisualMesh::parametersIn(int v, int triangle, const Triangle& co
       const auto found = std::find(p.begin(), p.end(), v);
       if (found == p.end())
         continue;
-      const double t = pathParameters(p, std::min(from, to), std::max(from, to))
-        [static_cast<std::size_t>(found - p.begin())];
+      const double t = pathParameters(
+        p, std::min(from, to), std::max(from, to))[static_cast<std::size_t>(found - p.begin())];
       const double fromStart = from < to ? t : 1.0 - t;
       result[k] = 1.0 - fromStart;
       result[(k + 1) % 3] = fromStart;
@@ -857,9 +857,8 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
     if (here.size() < 2)
       continue;
     // Two points (more only at round-off): the first and last along the cut.
-    const auto [first, last] = std::minmax_element(here.begin(),
-      here.end(),
-      [&](int x, int y) { return nodes[x].s < nodes[y].s; });
+    const auto [first, last] = std::minmax_element(
+      here.begin(), here.end(), [&](int x, int y) { return nodes[x].s < nodes[y].s; });
     links[*first].push_back(*last);
     links[*last].push_back(*first);
   }

@@ -36,9 +36,9 @@ struct CuttableVisualMesh::CrossingPath
   /// their barycentric coordinates in the parent.
   std::array<int, 2> ends{ { -1, -1 } };
   std::array<Vector3, 2> barycentric;
-  SurfacePath path;          ///< in visual vertices before re-meshing
+  SurfacePath path;              ///< in visual vertices before re-meshing
   std::array<Vector2, 2> planar; ///< its ends in the region's plane
-  std::vector<int> vertices; ///< the visual vertices it became
+  std::vector<int> vertices;     ///< the visual vertices it became
 };
 
 /// The region of a split collision triangle on one side.

@@ -92,8 +92,8 @@ void rebuildPaths(const std::string& label, VisualCollisionBinding& binding)
   for (std::size_t c = 0; c < n; ++c)
   {
     if (binding.pairedVisualVertices[c][0] < 0 || binding.pairedVisualVertices[c][1] < 0)
-      throw InvalidInputError(label + ": collision vertex " + std::to_string(c) +
-                              " has no visual vertex on each side");
+      throw InvalidInputError(
+        label + ": collision vertex " + std::to_string(c) + " has no visual vertex on each side");
   }
   std::map<std::pair<int, int>, int> triangleCount;
   for (const Triangle& t : binding.collisionTriangles)

@@ -161,10 +161,11 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
   vtkPolyData* blade = vtkPolyData::GetData(inputVector[BladeInputPort], 0);
   vtkPolyData* visualOutput = vtkPolyData::GetData(outputVector, VisualPort);
   vtkPolyData* collisionOutput = vtkPolyData::GetData(outputVector, CollisionPort);
-  vtkUnstructuredGrid* simulationOutput = vtkUnstructuredGrid::GetData(outputVector, SimulationPort);
+  vtkUnstructuredGrid* simulationOutput =
+    vtkUnstructuredGrid::GetData(outputVector, SimulationPort);
   Internals& tissue = *this->Tissue;
-  const vtkMTimeType tissueTime = std::max(
-    { visualInput->GetMTime(), collisionInput->GetMTime(), simulationInput->GetMTime() });
+  const vtkMTimeType tissueTime =
+    std::max({ visualInput->GetMTime(), collisionInput->GetMTime(), simulationInput->GetMTime() });
   try
   {
     if (!tissue.Cutter || tissueTime > tissue.BuiltFrom)
@@ -173,15 +174,13 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
       settings.collision.snapFraction = this->SnapFraction;
       settings.visual.cutSurfaceRows = this->CutSurfaceRows;
       settings.freePieces = this->FreePieces == DROP_FREE_PIECES
-        ? thintissue::FreePieceHandling::Drop
-        : thintissue::FreePieceHandling::Keep;
+                              ? thintissue::FreePieceHandling::Drop
+                              : thintissue::FreePieceHandling::Keep;
       settings.fragmentAreaFraction = this->FragmentAreaFraction;
       const thintissue::VisualCollisionBinding binding =
         thintissue::bindingFromPolyData(visualInput, collisionInput, settings.radiusArrayName);
-      tissue.Cutter = std::make_unique<thintissue::TissueCutter>(binding,
-        thintissue::fromUnstructuredGrid(simulationInput, "hexahedra"),
-        nullptr,
-        settings);
+      tissue.Cutter = std::make_unique<thintissue::TissueCutter>(
+        binding, thintissue::fromUnstructuredGrid(simulationInput, "hexahedra"), nullptr, settings);
       tissue.BuiltFrom = tissueTime;
       tissue.LastBlade = 0; // a blade present now cuts the new tissue
       this->NumberOfCuts = 0;

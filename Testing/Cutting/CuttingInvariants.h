@@ -144,8 +144,8 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
     if (mesh.triangleArea(t) <= 0.0 && visual.triangleMaterials()[t] == VisualMaterial::Surface)
       ++surfaceSlivers;
   }
-  const bool closed = report.nonManifoldEdges.count == 0 &&
-                      report.nonManifoldVertices.count == 0 && report.borderEdges.count == 0 &&
+  const bool closed = report.nonManifoldEdges.count == 0 && report.nonManifoldVertices.count == 0 &&
+                      report.borderEdges.count == 0 &&
                       report.inconsistentlyOrientedEdges.count == 0 &&
                       report.duplicateTriangles.count == 0 && surfaceSlivers == 0;
   if (!closed || report.unreferencedVertices.count > 0)
@@ -178,9 +178,9 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
       failure << "\nedge " << describe(edge.first) << "-" << describe(edge.second) << ":";
       for (int t : triangles)
         failure << " triangle " << t << " (" << mesh.triangles[t][0] << " " << mesh.triangles[t][1]
-                << " " << mesh.triangles[t][2] << ", material " << int(visual.triangleMaterials()[t])
-                << ", region " << visual.triangleRegions()[t] << " = ("
-                << collision.triangles()[visual.triangleRegions()[t]][0] << " "
+                << " " << mesh.triangles[t][2] << ", material "
+                << int(visual.triangleMaterials()[t]) << ", region " << visual.triangleRegions()[t]
+                << " = (" << collision.triangles()[visual.triangleRegions()[t]][0] << " "
                 << collision.triangles()[visual.triangleRegions()[t]][1] << " "
                 << collision.triangles()[visual.triangleRegions()[t]][2] << "), side "
                 << int(visual.triangleSides()[t]) << ")";
@@ -189,9 +189,9 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
     {
       if (mesh.triangleArea(t) > 0.0 || visual.triangleMaterials()[t] != VisualMaterial::Surface)
         continue;
-      failure << "\nzero-area triangle " << t << " (material "
-              << int(visual.triangleMaterials()[t]) << ", region " << visual.triangleRegions()[t]
-              << ", side " << int(visual.triangleSides()[t]) << "):";
+      failure << "\nzero-area triangle " << t << " (material " << int(visual.triangleMaterials()[t])
+              << ", region " << visual.triangleRegions()[t] << ", side "
+              << int(visual.triangleSides()[t]) << "):";
       for (int v : mesh.triangles[t])
       {
         const VisualVertexBinding& b = visual.bindings()[v];
@@ -222,8 +222,8 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
              << static_cast<int>(b.kind) << ")";
     if (b.parameters.minCoeff() < -1e-9 || b.parameters.maxCoeff() > 1.0 + 1e-9 ||
         std::abs(b.parameters.sum() - 1.0) > 1e-9)
-      return ::testing::AssertionFailure() << "visual vertex " << v << " has parameters "
-                                           << b.parameters.transpose();
+      return ::testing::AssertionFailure()
+             << "visual vertex " << v << " has parameters " << b.parameters.transpose();
   }
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
   {
@@ -238,9 +238,8 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
       }
       catch (const Error& e)
       {
-        return ::testing::AssertionFailure()
-               << "visual triangle " << t << " (side " << int(visual.triangleSides()[t])
-               << "): " << e.what();
+        return ::testing::AssertionFailure() << "visual triangle " << t << " (side "
+                                             << int(visual.triangleSides()[t]) << "): " << e.what();
       }
     }
   }
@@ -302,8 +301,8 @@ inline ::testing::AssertionResult visualFollowsTheCut(const TissueCutter& cutter
       const auto found = pieceOfNode.find(node);
       if (found != pieceOfNode.end() && found->second != pieceOf[t])
         return ::testing::AssertionFailure()
-               << "visual vertex " << v << " (collision piece " << pieceOf[t]
-               << ") hangs on node " << node << " of piece " << found->second;
+               << "visual vertex " << v << " (collision piece " << pieceOf[t] << ") hangs on node "
+               << node << " of piece " << found->second;
     }
   }
   return ::testing::AssertionSuccess();
@@ -370,7 +369,6 @@ inline ::testing::AssertionResult cutterIsConsistent(const TissueCutter& cutter,
   return cutter.hasVisual() ? visualFollowsTheCut(cutter, pieceOf, pieceOfNode)
                             : ::testing::AssertionSuccess();
 }
-
 
 } // namespace cutting_test
 } // namespace thintissue

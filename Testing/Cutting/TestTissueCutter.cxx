@@ -5,15 +5,15 @@
 #include "CorotationalHexFem.h"
 #include "CuttingInvariants.h"
 #include "MeniscusModel.h"
-#include "SoftTissueMaterial.h"
-#include "MeshValidation.h"
-#include "ThinSheetModel.h"
-#include "ThinTissueTestSupport.h"
 #include "MeshImport.h"
-#include "TissueBundle.h"
-#include "VisualCollisionBinding.h"
+#include "MeshValidation.h"
+#include "SoftTissueMaterial.h"
+#include "ThinSheetModel.h"
 #include "ThinTissueError.h"
+#include "ThinTissueTestSupport.h"
+#include "TissueBundle.h"
 #include "TissueCutter.h"
+#include "VisualCollisionBinding.h"
 
 #include <gtest/gtest.h>
 

@@ -111,24 +111,18 @@ TEST(VisualCut, RandomSweepsKeepTheVisualMeshValid)
     {
       const Vector3 a(coordinate(random), coordinate(random), 0.0);
       const Vector3 b(coordinate(random), coordinate(random), 0.0);
-      pair.cut(Blade::sweptSegment(a - Vector3(0, 0, 5),
-        a + Vector3(0, 0, 5),
-        b - Vector3(0, 0, 5),
-        b + Vector3(0, 0, 5)));
-      ASSERT_TRUE(visualMeshIsValid(pair.visual, pair.collision))
-        << "run " << run << ", cut " << c;
+      pair.cut(Blade::sweptSegment(
+        a - Vector3(0, 0, 5), a + Vector3(0, 0, 5), b - Vector3(0, 0, 5), b + Vector3(0, 0, 5)));
+      ASSERT_TRUE(visualMeshIsValid(pair.visual, pair.collision)) << "run " << run << ", cut " << c;
     }
   }
 }
-
 
 namespace
 {
 
 /// Formula 5-1: where a visual vertex projects on the collision mesh.
-Vector3 projected(const CuttableVisualMesh& visual,
-  const CuttableCollisionMesh& collision,
-  int v)
+Vector3 projected(const CuttableVisualMesh& visual, const CuttableCollisionMesh& collision, int v)
 {
   const VisualVertexBinding& b = visual.bindings()[v];
   const auto& x = collision.restPositions();
@@ -164,8 +158,8 @@ TEST(VisualCut, RebindingKeepsEveryVisualVertexWhereItProjected)
     was.push_back(projected(pair.visual, pair.collision, static_cast<int>(v)));
   const std::vector<VisualVertexBinding> old = pair.visual.bindings();
   pair.cut(scalpelAlongY(3.3, -80.0, 80.0));
-  pair.cut(Blade::sweptSegment(Vector3(-80, 7.1, -5), Vector3(-80, 7.1, 5), Vector3(80, 4.2, -5),
-    Vector3(80, 4.2, 5)));
+  pair.cut(Blade::sweptSegment(
+    Vector3(-80, 7.1, -5), Vector3(-80, 7.1, 5), Vector3(80, 4.2, -5), Vector3(80, 4.2, 5)));
   int checked = 0, rebound = 0;
   for (std::size_t v = 0; v < before; ++v)
   {
@@ -180,7 +174,8 @@ TEST(VisualCut, RebindingKeepsEveryVisualVertexWhereItProjected)
       << " t " << old[v].parameters.transpose() << ", is element " << b.element << " t "
       << b.parameters.transpose() << " edge "
       << (b.kind == BindingKind::CollisionEdge ? pair.visual.collisionEdges()[b.element][0] : -1)
-      << "-" << (b.kind == BindingKind::CollisionEdge ? pair.visual.collisionEdges()[b.element][1] : -1);
+      << "-"
+      << (b.kind == BindingKind::CollisionEdge ? pair.visual.collisionEdges()[b.element][1] : -1);
     ++checked;
   }
   EXPECT_GT(rebound, 100);
@@ -214,8 +209,8 @@ TEST(VisualCut, ACutAcrossACutSplitsItsCutSurface)
   CutPair pair(sheetBinding(), 2);
   pair.cut(scalpelAlongY(3.0, -80.0, 80.0));
   const std::size_t surface = pair.visual.cutSurfaceTriangleCount();
-  pair.cut(Blade::sweptSegment(Vector3(-80, 6.0, -5), Vector3(-80, 6.0, 5), Vector3(80, 6.0, -5),
-    Vector3(80, 6.0, 5)));
+  pair.cut(Blade::sweptSegment(
+    Vector3(-80, 6.0, -5), Vector3(-80, 6.0, 5), Vector3(80, 6.0, -5), Vector3(80, 6.0, 5)));
   int pieces = 0;
   collisionPieces(pair.collision, pieces);
   EXPECT_EQ(pieces, 4);

@@ -15,8 +15,8 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkExecutive.h>
-#include <vtkPointData.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
