@@ -166,10 +166,12 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
   Internals& tissue = *this->Tissue;
   const vtkMTimeType tissueTime =
     std::max({ visualInput->GetMTime(), collisionInput->GetMTime(), simulationInput->GetMTime() });
+  this->UpdateProgress(0.0);
   try
   {
     if (!tissue.Cutter || tissueTime > tissue.BuiltFrom)
     {
+      this->SetProgressText("building the tissue");
       thintissue::TissueCutterSettings settings;
       settings.collision.snapFraction = this->SnapFraction;
       settings.visual.cutSurfaceRows = this->CutSurfaceRows;
@@ -190,6 +192,8 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
     if (blade && blade->GetMTime() > tissue.LastBlade && blade->GetNumberOfCells() > 0)
     {
       tissue.LastBlade = blade->GetMTime();
+      this->SetProgressText("cutting");
+      this->UpdateProgress(0.5);
       const thintissue::Blade cut =
         thintissue::Blade::fromSurface(thintissue::fromPolyData(blade, "blade"));
       const thintissue::TissueCutReport report = tissue.Cutter->cut(cut);
@@ -228,6 +232,8 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
       collision.triangles.push_back(tissue.Cutter->collision().triangles()[t]);
   collisionOutput->ShallowCopy(thintissue::toPolyData(collision));
   simulationOutput->ShallowCopy(thintissue::toUnstructuredGrid(tissue.Cutter->simulation()));
+  this->SetProgressText("done");
+  this->UpdateProgress(1.0);
   return this->LastErrorMessage.empty() ? 1 : 0;
 }
 

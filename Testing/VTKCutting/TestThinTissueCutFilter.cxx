@@ -11,6 +11,7 @@
 
 #include "ThinTissueVtkErrorObserver.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -24,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <vector>
 
 using thintissue::testing::ErrorCounter;
 
@@ -212,4 +214,25 @@ TEST(vtkThinTissueCutFilter, ADroppedPieceLeavesTheOutputs)
     EXPECT_EQ(visual.borderEdges.count, 0u) << visual.toString();
     EXPECT_EQ(validate(pipeline.cut->GetCollisionOutput()).connectedComponents, drop ? 2u : 3u);
   }
+}
+
+TEST(vtkThinTissueCutFilter, ReportsProgress)
+{
+  SheetPipeline pipeline;
+  pipeline.binding->Update();
+  std::vector<double> fractions;
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetClientData(&fractions);
+  progress->SetCallback(
+    [](vtkObject* caller, unsigned long, void* data, void*)
+    {
+      static_cast<std::vector<double>*>(data)->push_back(
+        static_cast<vtkAlgorithm*>(caller)->GetProgress());
+    });
+  pipeline.cut->AddObserver(vtkCommand::ProgressEvent, progress);
+  pipeline.cut->SetBladeData(scalpel(3.0, -80.0, 80.0));
+  pipeline.cut->Update();
+  ASSERT_GE(fractions.size(), 2u);
+  EXPECT_EQ(fractions.front(), 0.0);
+  EXPECT_EQ(fractions.back(), 1.0);
 }
