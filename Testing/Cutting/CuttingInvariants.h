@@ -217,9 +217,24 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
     else
       alive = b.element >= 0 && b.element < static_cast<int>(collision.triangleCount());
     if (!alive)
-      return ::testing::AssertionFailure()
-             << "visual vertex " << v << " is bound to a dead element " << b.element << " (kind "
-             << static_cast<int>(b.kind) << ")";
+    {
+      auto failure = ::testing::AssertionFailure()
+                     << "visual vertex " << v << " is bound to a dead element " << b.element
+                     << " (kind " << static_cast<int>(b.kind) << ")";
+      if (b.kind == BindingKind::CollisionEdge)
+        failure << " = (" << edges[b.element][0] << ", " << edges[b.element][1] << ")";
+      for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (int w : mesh.triangles[t])
+          if (w == static_cast<int>(v))
+          {
+            const Triangle& r = collision.triangles()[visual.triangleRegions()[t]];
+            failure << "; in triangle " << t << " of region " << visual.triangleRegions()[t] << " ("
+                    << r[0] << " " << r[1] << " " << r[2] << ") side "
+                    << int(visual.triangleSides()[t]) << " material "
+                    << int(visual.triangleMaterials()[t]);
+          }
+      return failure;
+    }
     if (b.parameters.minCoeff() < -1e-9 || b.parameters.maxCoeff() > 1.0 + 1e-9 ||
         std::abs(b.parameters.sum() - 1.0) > 1e-9)
       return ::testing::AssertionFailure()
