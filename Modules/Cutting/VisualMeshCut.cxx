@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <unordered_set>
 
 namespace thintissue
 {
@@ -899,14 +900,38 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
 // only) and spliced back into the visual mesh.
 void CuttableVisualMesh::remeshRegions(CutContext& context)
 {
+  // Only the triangles a traced path touches are re-meshed (the rest of
+  // each region keeps its triangles; they are relabelled afterwards).
   std::vector<int> triangles;
   std::vector<int> regionOfLocal;
   for (std::size_t r = 0; r < context.regions.size(); ++r)
   {
-    for (int t : context.regions[r].triangles)
+    RegionCut& region = context.regions[r];
+    std::unordered_set<int> vertexPoints;
+    std::unordered_set<std::uint64_t> edgePoints;
+    for (const CrossingPath& crossing : region.crossings)
+      for (const SurfacePoint& point : crossing.path.points)
+      {
+        if (point.isVertex())
+          vertexPoints.insert(point.vertex);
+        else
+          edgePoints.insert(edgeKey(point.edgeStart, point.edgeEnd));
+      }
+    for (int t : region.triangles)
     {
-      triangles.push_back(t);
-      regionOfLocal.push_back(static_cast<int>(r));
+      const Triangle& tri = Mesh.triangles[t];
+      bool touched = false;
+      for (int k = 0; k < 3 && !touched; ++k)
+        touched = vertexPoints.count(tri[k]) || edgePoints.count(edgeKey(tri[k], tri[(k + 1) % 3]));
+      if (touched)
+      {
+        triangles.push_back(t);
+        regionOfLocal.push_back(static_cast<int>(r));
+      }
+      else
+      {
+        region.newTriangles.push_back(t);
+      }
     }
   }
   if (triangles.empty())
