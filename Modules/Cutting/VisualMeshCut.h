@@ -10,10 +10,12 @@
 //        The points are inserted as visual vertices (rest position, normal,
 //        texture coordinates and point attributes interpolated along the
 //        visual edge they cut) and the region re-triangulated around them
-//        (PathRemeshing.h, on the region only); then, wherever the collision
-//        mesh opened, the visual vertices bound to the opened collision
-//        vertices and edges get one copy per side, so the visual surface
-//        opens with it.
+//        (PathRemeshing.h, on the triangles the cut touches only); then,
+//        wherever the collision mesh opened, the visual vertices bound to
+//        the opened collision vertices and edges get one copy per side, so
+//        the visual surface opens with it. The plane is the binding's, the
+//        border bulged by a thousandth and folds repaired (regionPlane), and
+//        each cut is walked through the triangles it crosses.
 //  5.3.3 Binding update: a vertex bound to a split triangle is rebound to
 //        the piece that holds it, (a', b', c') = (a, b, c) M^-1 (formula
 //        5-2, M from CollisionTriangleSplit::childCorners); a vertex on a
@@ -33,8 +35,8 @@
 //        closed. A strip whose edge is cut again is split by comparing
 //        parameters (fig. 5-13), not by geometry.
 //
-// Every cut costs what the cut touches: the regions of the split and
-// re-cornered collision triangles and the strips on their edges.
+// A cut costs what the regions of the split and re-cornered collision
+// triangles and the strips on their edges hold (not the whole mesh).
 #ifndef VisualMeshCut_h
 #define VisualMeshCut_h
 
