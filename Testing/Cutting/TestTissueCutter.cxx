@@ -201,6 +201,7 @@ public:
         try
         {
           const auto report = cutter.cut(blade);
+          ASSERT_EQ(report.visualError, "") << Model.name << ", episode " << e << ", sweep " << s;
           // Counts grow by what the cut touched only: copies of touched
           // hexahedra, at most one edge point and copies per changed triangle.
           const auto& touched = report.simulation.touchedHexahedra;
