@@ -22,7 +22,7 @@ namespace thintissue
 {
 
 /// Current file format version (2: collision radii and metadata added).
-constexpr std::uint32_t BindingCacheVersion = 2;
+constexpr std::uint32_t BindingCacheVersion = 3;
 
 /// Checksum (64-bit FNV-1a) of everything the binding depends on: the
 /// visual and collision meshes (positions, triangles, texture corners and

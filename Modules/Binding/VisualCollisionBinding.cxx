@@ -4,6 +4,7 @@
 #include "MeshQueries.h"
 #include "MeshValidation.h"
 #include "PathRemeshing.h"
+#include "SharedPathRuns.h"
 #include "TriangleBvh.h"
 #include "TriangleMeshAdjacency.h"
 
@@ -131,6 +132,12 @@ std::uint64_t edgeKey(int a, int b)
 /// and keeping such points apart would leave sliver triangles of no area.
 /// The path moves by at most this fraction of an edge.
 constexpr double PathMergeTolerance = 1e-3;
+// Where a re-routed shared run crosses the edges around its vertices (as a
+// fraction of each edge from the run): wide enough that the region between
+// the two paths is laid out without folds, near enough to stay beside the
+// geodesic.
+constexpr double SharedRunOffsetFraction = 0.25;
+constexpr int MaximumSeparationPasses = 6;
 
 /// A border collision vertex may take a point inside a visual edge at least
 /// this far (in edge parameter) from both ends; nearer, the end vertex.
@@ -1210,6 +1217,20 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   }
   allPaths.insert(allPaths.end(), innerPaths.begin(), innerPaths.end());
   RemeshedSurface remeshed = insertPaths(rimmed.mesh, allPaths, PathMergeTolerance);
+  // Paths that touch are moved apart (a path re-routed around a vertex
+  // frees the vertices inside it for the next pass: a hub where several
+  // paths touch takes one pass per path around it).
+  for (int pass = 0; pass < MaximumSeparationPasses; ++pass)
+  {
+    const TriangleMeshAdjacency remeshedAdjacency(remeshed.mesh);
+    const SharedRunSeparation separated = separateSharedRuns(
+      remeshed.mesh, remeshedAdjacency, remeshed.pathVertices, SharedRunOffsetFraction);
+    if (separated.runsSeparated == 0)
+    {
+      break;
+    }
+    remeshed = insertPaths(remeshed.mesh, separated.paths, PathMergeTolerance);
+  }
   binding.visual = std::move(remeshed.mesh);
   const TriangleMesh& mesh = binding.visual;
   for (std::size_t k = 0; k < requests.size(); ++k)

@@ -244,7 +244,19 @@ bool TissueCutter::moveToBranchCopy(int v)
         Collision.trianglesOfVertex(corner).end());
     holder = Branches.copyHolding(h, around);
   }
-  if (holder < 0 || holder == h)
+  if (holder < 0)
+  {
+    // No copy of its hexahedron holds its triangle or one around it (a
+    // path or rim vertex beyond the triangles' radius boxes, on the steak):
+    // it goes to the nearest hexahedron holding its triangle, extrapolated,
+    // so that it follows its own piece rather than whatever lies under it.
+    const std::vector<int>& holders = Branches.hexahedraOf(triangle);
+    if (holders.empty())
+      return false;
+    VisualEmbedding.reembed({ v }, { Visual.mesh().positions[v] }, Simulation, holders);
+    return VisualEmbedding.hexahedron(v) != h;
+  }
+  if (holder == h)
     return false;
   VisualEmbedding.setPoint(v, holder, VisualEmbedding.localCoordinates(v));
   return true;

@@ -185,6 +185,17 @@ inline void checkBinding(const TriangleMesh& original,
     }
     return 1e300;
   };
+  // Paths meet only at their end vertices (SharedPathRuns.h): no inner
+  // vertex of a path lies on another path.
+  std::vector<int> pathsThrough(mesh.vertexCount(), 0);
+  for (const BindingPath& path : b.paths)
+    for (int v : path.visualVertices)
+      ++pathsThrough[v];
+  for (const BindingPath& path : b.paths)
+    for (std::size_t i = 1; i + 1 < path.visualVertices.size(); ++i)
+      EXPECT_EQ(pathsThrough[path.visualVertices[i]], 1)
+        << "path of collision edge " << path.collisionEdge << " side " << path.side
+        << " touches another path at visual vertex " << path.visualVertices[i];
   for (const BindingPath& path : b.paths)
   {
     const auto& edge = b.collisionEdges[path.collisionEdge];
@@ -200,8 +211,10 @@ inline void checkBinding(const TriangleMesh& original,
       edgePathLength(path.visualVertices.front(), path.visualVertices.back(), path.side);
     // The re-meshed surface holds the path's own edges, so the edge path
     // is at most the path; the path is the shortest up to the points the
-    // re-meshing merged (each moved by at most 1e-3 of its edge).
-    EXPECT_LE(path.length, edgePath * (1.0 + 5e-3));
+    // re-meshing merged (each moved by at most 1e-3 of its edge) and the
+    // detours around vertices where it touched another path (a quarter of
+    // the edges around each; 4 % on the steak).
+    EXPECT_LE(path.length, edgePath * 1.1);
     EXPECT_GE(path.length,
       (mesh.positions[path.visualVertices.front()] - mesh.positions[path.visualVertices.back()])
           .norm() *

@@ -185,6 +185,21 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
                 << collision.triangles()[visual.triangleRegions()[t]][2] << "), side "
                 << int(visual.triangleSides()[t]) << ")";
     }
+    if (report.nonManifoldVertices.count > 0)
+    {
+      // The triangles around the first pinched vertex.
+      const std::string& where = report.nonManifoldVertices.firstLocation;
+      const int v = std::atoi(where.substr(where.find_last_of(' ') + 1).c_str());
+      failure << "\npinched vertex " << describe(v) << ":";
+      for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (int w : mesh.triangles[t])
+          if (w == v)
+            failure << "\n  triangle " << t << " (" << describe(mesh.triangles[t][0]) << " "
+                    << describe(mesh.triangles[t][1]) << " " << describe(mesh.triangles[t][2])
+                    << ", material " << int(visual.triangleMaterials()[t]) << ", region "
+                    << visual.triangleRegions()[t] << ", side " << int(visual.triangleSides()[t])
+                    << ")";
+    }
     for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
     {
       if (mesh.triangleArea(t) > 0.0 || visual.triangleMaterials()[t] != VisualMaterial::Surface)

@@ -371,6 +371,23 @@ TEST(TissueCutterProperty, RandomSweepsCutTheMeniscusVisualMeshConsistently)
   EXPECT_EQ(sweeps.Sweeps, 1000 * sweepScale());
 }
 
+TEST(TissueCutterProperty, RandomSweepsCutTheTornMenisciVisualMeshesConsistently)
+{
+  unsigned seed = 5511u;
+  for (MeniscusTearType tear : { MeniscusTearType::Radial })
+  {
+    MeniscusParameters parameters;
+    parameters.tear = defaultMeniscusTear(tear);
+    const MeniscusModel meniscus = makeMeniscus(parameters);
+    const VisualCollisionBinding binding =
+      bindVisualToCollision(meniscus.visual, meniscus.collision);
+    RandomSweeps sweeps(meniscus, seed++);
+    sweeps.Binding = &binding;
+    sweeps.run(20 * sweepScale(), 20);
+    EXPECT_EQ(sweeps.Sweeps, 400 * sweepScale()) << meniscus.name;
+  }
+}
+
 namespace
 {
 
@@ -399,10 +416,8 @@ TEST(TissueCutterProperty, RandomSweepsOverTheSteakKeepEveryInvariant)
   model.visual = bundle->visual;
   model.collision = bundle->collision;
   model.simulation = bundle->simulation;
-  // Collision and simulation only: the steak's binding has paths that
-  // share segments (allowed by 5.2), which the visual cut does not follow
-  // through repeated cuts yet (see the uncut test below).
   RandomSweeps sweeps(model, 2468u);
+  sweeps.Binding = &bundle->binding;
   sweeps.run(20 * sweepScale(), 20);
   EXPECT_EQ(sweeps.Sweeps, 400 * sweepScale());
 }

@@ -2,8 +2,7 @@
 // when absent) prepared as the thesis did (85 collision vertices, 76
 // hexahedra), after three straight cuts across it; the four pieces are
 // moved apart along the cuts to show their cut surfaces (dark red). The
-// cut surface must be closed. (Some other cut positions fail on this
-// binding, whose paths share segments: see TissueCutReport::visualError.)
+// cut surface must be closed.
 #include "CutSceneHelpers.h"
 #include "MeshImport.h"
 #include "MeshValidation.h"
