@@ -8,10 +8,10 @@
 // vertices and elements over 6 consecutive cuts (fig. 5-17).
 //
 // With the visual mesh (table 5-4: the sheets of 881 to 53,633 visual
-// vertices on the 65-vertex collision mesh, and the 1M-triangle sheet): the visual cut, binding update
-// and cut surface (5.3.2-5.3.4) and the visual-simulation embedding update
-// (5.3.5) too, for a sweep across the sheet and for a short cut through a
-// few collision triangles (the thesis's "per cut").
+// vertices on the 65-vertex collision mesh, and the 1M-triangle sheet): the visual cut, binding
+// update and cut surface (5.3.2-5.3.4) and the visual-simulation embedding update (5.3.5) too, for
+// a sweep across the sheet and for a short cut through a few collision triangles (the thesis's "per
+// cut").
 #include "BenchmarkRegistry.h"
 
 #include "CorotationalHexFem.h"
@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 
 namespace
 {
@@ -97,7 +98,8 @@ void cutVisualAndReport(const std::string& name,
   const HexahedralMesh& simulation,
   const Blade& blade,
   int repetitions,
-  BenchmarkReporter& reporter)
+  BenchmarkReporter& reporter,
+  std::optional<double> thesisTotal = std::nullopt)
 {
   std::vector<double> stages[4];
   std::size_t changed = 0, cutTriangles = 0;
@@ -122,7 +124,18 @@ void cutVisualAndReport(const std::string& name,
   reporter.report(
     what, "visual cut, binding update and cut surface (5.3.2-5.3.4)", median(stages[1]), "ms");
   reporter.report(what, "visual-simulation embedding update (5.3.5)", median(stages[2]), "ms");
-  reporter.report(what, "whole cut", median(stages[3]), "ms");
+  reporter.report(what, "whole cut", median(stages[3]), "ms", thesisTotal);
+}
+
+/// The thesis's "per cut": a short vertical cut through a few collision
+/// triangles near the middle of the tissue, along y.
+Blade shortCutAcross(const BoundingBox& box)
+{
+  const Vector3 centre = box.center();
+  const Vector3 a = centre + Vector3(0.03, -0.08, 0.0).cwiseProduct(box.sizes());
+  const Vector3 b = centre + Vector3(0.03, 0.08, 0.0).cwiseProduct(box.sizes());
+  const Vector3 up = Vector3::UnitZ() * box.sizes().norm();
+  return Blade::sweptSegment(a - up, a + up, b - up, b + up);
 }
 
 /// Fig. 5-17: counts over 6 consecutive cuts across the tissue.
@@ -155,16 +168,28 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
 (const BenchmarkContext& context, BenchmarkReporter& reporter)
 {
   const int repetitions = context.quick ? 3 : 21;
+  // Table 5-6: the 3,425-vertex visual sheet on three collision meshes
+  // (thesis totals per cut 13.6 / 12.8 / 11.9 ms).
+  const double table56[3] = { 13.6, 12.8, 11.9 };
   for (int model = 1; model <= (context.quick ? 1 : 3); ++model)
   {
-    const TissueModel sheet = makeThinSheet(thesisSheetCollisionResolution(model));
-    cutAndReport("thin sheet, collision model " + std::to_string(model),
-      sheet.collision,
+    const TissueModel sheet =
+      makeThinSheet(thesisSheetCollisionResolution(model, thesisSheetVisualResolution(2)));
+    const std::string name = "thin sheet, collision model " + std::to_string(model);
+    cutAndReport(name, sheet.collision, sheet.simulation, repetitions, reporter);
+    const VisualCollisionBinding binding = bindVisualToCollision(sheet.visual, sheet.collision);
+    cutVisualAndReport(name + " with visual model 2, short cut",
+      binding,
       sheet.simulation,
+      shortCutAcross(boundingBoxOf(sheet.collision.positions)),
       repetitions,
-      reporter);
+      reporter,
+      table56[model - 1]);
   }
-  // Model 5 is the 1M-triangle sheet (binding it takes about 25 s).
+  // Table 5-4: visual models 1-4 on the 65-vertex collision mesh (thesis
+  // totals per cut 10.5 / 14.6 / 21.9 / 49.9 ms); model 5 is the
+  // 1M-triangle sheet (binding it takes about 25 s).
+  const double table54[4] = { 10.5, 14.6, 21.9, 49.9 };
   for (int model = 1; model <= (context.quick ? 1 : 5); ++model)
   {
     const TissueModel visualSheet = makeThinSheet(thesisSheetVisualResolution(model));
@@ -179,16 +204,13 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
       scalpelAcross(box, 0.53),
       runs,
       reporter);
-    const Vector3 centre = box.center();
-    const Vector3 a = centre + Vector3(0.03, -0.08, 0.0).cwiseProduct(box.sizes());
-    const Vector3 b = centre + Vector3(0.03, 0.08, 0.0).cwiseProduct(box.sizes());
-    const Vector3 up = Vector3::UnitZ() * box.sizes().norm();
     cutVisualAndReport(name + ", short cut",
       binding,
       visualSheet.simulation,
-      Blade::sweptSegment(a - up, a + up, b - up, b + up),
+      shortCutAcross(box),
       runs,
-      reporter);
+      reporter,
+      model <= 4 ? std::optional<double>(table54[model - 1]) : std::nullopt);
   }
   const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
   countConsecutiveCuts(
@@ -205,12 +227,26 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
     reporter.skip("steak", "no " + steak);
     return;
   }
-  TissuePreparationSettings settings;
-  settings.collision.vertexCount = 85;
-  settings.hexahedronCount = 76;
-  const TissueBundle bundle = prepareTissue(readTriangleMesh(steak), settings);
-  cutAndReport(
-    "steak, 85 collision vertices", bundle.collision, bundle.simulation, repetitions, reporter);
-  countConsecutiveCuts(
-    "steak, 85 collision vertices", bundle.collision, bundle.simulation, reporter);
+  // Table 5-2: the steak on 50 and 85 collision vertices (thesis totals per
+  // cut 17.6 / 9.4 ms).
+  const TriangleMesh steakMesh = readTriangleMesh(steak);
+  const std::pair<int, double> table52[2] = { { 50, 17.6 }, { 85, 9.4 } };
+  for (const auto& [collisionVertices, thesisTotal] : table52)
+  {
+    TissuePreparationSettings settings;
+    settings.collision.vertexCount = collisionVertices;
+    settings.hexahedronCount = 76;
+    const TissueBundle bundle = prepareTissue(steakMesh, settings);
+    const std::string name = "steak, " + std::to_string(collisionVertices) + " collision vertices";
+    cutAndReport(name, bundle.collision, bundle.simulation, repetitions, reporter);
+    cutVisualAndReport(name + ", visual, short cut",
+      bundle.binding,
+      bundle.simulation,
+      shortCutAcross(boundingBoxOf(bundle.collision.positions)),
+      repetitions,
+      reporter,
+      thesisTotal);
+    if (collisionVertices == 85)
+      countConsecutiveCuts(name, bundle.collision, bundle.simulation, reporter);
+  }
 }
