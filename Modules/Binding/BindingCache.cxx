@@ -244,6 +244,8 @@ void checkBinding(const VisualCollisionBinding& b)
   {
     require(p.collisionEdge >= 0 && p.collisionEdge < edges && p.side >= -1 && p.side <= 1,
       "path edge in range");
+    require(p.detours >= 0 && static_cast<std::size_t>(p.detours) <= p.visualVertices.size(),
+      "path detours in range");
     for (int v : p.visualVertices)
     {
       require(v >= 0 && static_cast<std::size_t>(v) < visualVertices, "path vertex in range");
@@ -298,6 +300,7 @@ void writeBindingCache(const std::string& path,
     payload.pod(static_cast<std::int32_t>(p.collisionEdge));
     payload.pod(static_cast<std::int32_t>(p.side));
     payload.pod(p.length);
+    payload.pod(p.detours);
     payload.vector(p.visualVertices);
   }
   payload.vector(binding.collisionRadii);
@@ -425,6 +428,7 @@ std::optional<BindingCacheContents> readContents(const std::string& path,
       p.collisionEdge = r.pod<std::int32_t>();
       p.side = r.pod<std::int32_t>();
       p.length = r.pod<double>();
+      p.detours = r.pod<int>();
       p.visualVertices = r.vector<int>();
     }
     b.collisionRadii = r.vector<double>();

@@ -25,6 +25,8 @@ struct SharedRunSeparation
   /// Every path as points of the mesh: its vertices, with the vertices of
   /// a re-routed run replaced by edge points beside them.
   std::vector<SurfacePath> paths;
+  /// Per path, how many of its vertices were re-routed around.
+  std::vector<int> detours;
   /// Runs of touched vertices re-routed.
   int runsSeparated = 0;
   /// Runs left as they are: paths cross there, or a side is free only once

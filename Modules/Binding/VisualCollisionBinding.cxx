@@ -465,11 +465,25 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         // but an edge point lies half-way, where the rim paths (the
         // equator between the two sides) belong.
         Vector3 target = origin;
-        if (outward[v].norm() > 0.0)
+        // At the tip of a slit (a tear's lips meeting), the border turns
+        // back on itself: "outward" points along the slit, into the gap
+        // between the lips, and the ray meets a lip far from the tip. The
+        // tip's own rim point is beside it.
+        constexpr double SlitTipOutward = 0.5; // border edges > 150 degrees apart
+        if (outward[v].norm() > SlitTipOutward)
         {
-          const Vector3 direction = outward[v].normalized();
-          const auto [distance, triangle] =
-            nearestRayHit(visual, origin, direction, &visualBvh, reach);
+          Vector3 direction = outward[v].normalized();
+          auto [distance, triangle] = nearestRayHit(visual, origin, direction, &visualBvh, reach);
+          if (triangle >= 0 && visual.triangleNormal(triangle).dot(direction) < 0.0)
+          {
+            // The ray enters the surface: the vertex lies outside it (in
+            // the gap between a tear's lips, the collision lip short of
+            // the visual one), and what it met is the other lip. Its own
+            // wall is behind it.
+            direction = -direction;
+            std::tie(distance, triangle) =
+              nearestRayHit(visual, origin, direction, &visualBvh, reach);
+          }
           if (triangle >= 0)
           {
             target = origin + distance * direction;
@@ -1220,6 +1234,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   // Paths that touch are moved apart (a path re-routed around a vertex
   // frees the vertices inside it for the next pass: a hub where several
   // paths touch takes one pass per path around it).
+  std::vector<int> detours(requests.size(), 0);
   for (int pass = 0; pass < MaximumSeparationPasses; ++pass)
   {
     const TriangleMeshAdjacency remeshedAdjacency(remeshed.mesh);
@@ -1230,6 +1245,10 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
       break;
     }
     remeshed = insertPaths(remeshed.mesh, separated.paths, PathMergeTolerance);
+    for (std::size_t k = 0; k < detours.size(); ++k)
+    {
+      detours[k] += separated.detours[k];
+    }
   }
   binding.visual = std::move(remeshed.mesh);
   const TriangleMesh& mesh = binding.visual;
@@ -1239,6 +1258,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     path.collisionEdge = requests[k].edge;
     path.side = requests[k].side;
     path.visualVertices = std::move(remeshed.pathVertices[k]);
+    path.detours = detours[k];
     for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
     {
       path.length +=

@@ -71,6 +71,10 @@ struct BindingPath
   int side = 0; ///< +1, -1, or 0 for a border edge's rim path
   std::vector<int> visualVertices;
   double length = 0.0; ///< in the rest configuration
+  /// Vertices of the geodesic the path was re-routed around, where another
+  /// path touched it (SharedPathRuns.h): 0 for an exact geodesic. Not
+  /// carried by the VTK binding arrays (0 when read back from them).
+  int detours = 0;
 };
 
 struct VisualCollisionBindingSettings

@@ -70,6 +70,31 @@ TEST(VisualCollisionBinding, MeniscusIsBoundExactly)
   checkBinding(meniscus().visual, meniscus().collision, meniscusBinding());
 }
 
+// Torn menisci: the collision lips lie on the visual lips' walls (a
+// round-off outside them, where the rim ray would meet the other lip), the
+// border turns back at the tear's ends, and near a radial tear up to seven
+// paths meet at one visual vertex before they are moved apart.
+TEST(VisualCollisionBinding, TornMenisciAreBoundExactly)
+{
+  for (MeniscusTearType tear :
+    { MeniscusTearType::Longitudinal, MeniscusTearType::Radial, MeniscusTearType::Flap })
+  {
+    MeniscusParameters parameters;
+    parameters.tear = defaultMeniscusTear(tear);
+    const MeniscusModel torn = makeMeniscus(parameters);
+    SCOPED_TRACE(torn.name);
+    const VisualCollisionBinding binding = bindVisualToCollision(torn.visual, torn.collision);
+    checkBinding(torn.visual, torn.collision, binding);
+    int detours = 0;
+    for (const BindingPath& path : binding.paths)
+      detours += path.detours;
+    if (tear == MeniscusTearType::Radial)
+    {
+      EXPECT_GT(detours, 0); // the paths that met beside the tear were moved apart
+    }
+  }
+}
+
 TEST(VisualCollisionBinding, InnerEdgesBetweenRimVerticesGetAPathOnEachSide)
 {
   // The meniscus's collision grid cuts its four corners with inner edges
@@ -266,6 +291,13 @@ TEST(BindingCache, RoundTripStaleAndDamagedFiles)
   }
   ASSERT_TRUE(read->simulation.has_value());
   EXPECT_TRUE(read->simulation->nodes == s.simulation.nodes);
+  ASSERT_EQ(read->binding.paths.size(), binding.paths.size());
+  for (std::size_t k = 0; k < binding.paths.size(); ++k)
+  {
+    EXPECT_EQ(read->binding.paths[k].visualVertices, binding.paths[k].visualVertices);
+    EXPECT_EQ(read->binding.paths[k].length, binding.paths[k].length);
+    EXPECT_EQ(read->binding.paths[k].detours, binding.paths[k].detours);
+  }
 
   // Stale: another collision mesh.
   TriangleMesh moved = s.collision;

@@ -371,21 +371,38 @@ TEST(TissueCutterProperty, RandomSweepsCutTheMeniscusVisualMeshConsistently)
   EXPECT_EQ(sweeps.Sweeps, 1000 * sweepScale());
 }
 
-TEST(TissueCutterProperty, RandomSweepsCutTheTornMenisciVisualMeshesConsistently)
+namespace
 {
-  unsigned seed = 5511u;
-  for (MeniscusTearType tear : { MeniscusTearType::Radial })
-  {
-    MeniscusParameters parameters;
-    parameters.tear = defaultMeniscusTear(tear);
-    const MeniscusModel meniscus = makeMeniscus(parameters);
-    const VisualCollisionBinding binding =
-      bindVisualToCollision(meniscus.visual, meniscus.collision);
-    RandomSweeps sweeps(meniscus, seed++);
-    sweeps.Binding = &binding;
-    sweeps.run(20 * sweepScale(), 20);
-    EXPECT_EQ(sweeps.Sweeps, 400 * sweepScale()) << meniscus.name;
-  }
+
+/// 400 visual sweeps over a torn meniscus (one test per tear, so that they
+/// run in parallel).
+void sweepTornMeniscusVisually(MeniscusTearType tear, unsigned seed)
+{
+  MeniscusParameters parameters;
+  parameters.tear = defaultMeniscusTear(tear);
+  const MeniscusModel meniscus = makeMeniscus(parameters);
+  const VisualCollisionBinding binding = bindVisualToCollision(meniscus.visual, meniscus.collision);
+  RandomSweeps sweeps(meniscus, seed);
+  sweeps.Binding = &binding;
+  sweeps.run(20 * sweepScale(), 20);
+  EXPECT_EQ(sweeps.Sweeps, 400 * sweepScale()) << meniscus.name;
+}
+
+} // namespace
+
+TEST(TissueCutterProperty, RandomSweepsCutTheLongitudinallyTornMeniscusVisualMeshConsistently)
+{
+  sweepTornMeniscusVisually(MeniscusTearType::Longitudinal, 5511u);
+}
+
+TEST(TissueCutterProperty, RandomSweepsCutTheRadiallyTornMeniscusVisualMeshConsistently)
+{
+  sweepTornMeniscusVisually(MeniscusTearType::Radial, 5512u);
+}
+
+TEST(TissueCutterProperty, RandomSweepsCutTheFlapTornMeniscusVisualMeshConsistently)
+{
+  sweepTornMeniscusVisually(MeniscusTearType::Flap, 5513u);
 }
 
 namespace
