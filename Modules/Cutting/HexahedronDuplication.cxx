@@ -131,6 +131,16 @@ int HexahedralBranches::copyHolding(int h, const std::vector<int>& triangles) co
   return -1;
 }
 
+int HexahedralBranches::copyHolding(int h, int triangle) const
+{
+  for (int copy : Copies[Original[h]])
+  {
+    if (std::binary_search(HexTriangles[copy].begin(), HexTriangles[copy].end(), triangle))
+      return copy;
+  }
+  return -1;
+}
+
 void HexahedralBranches::assignPieces(const CuttableCollisionMesh& collision,
   const CollisionCutResult& cut)
 {

@@ -54,6 +54,8 @@ public:
   const std::vector<int>& copiesOf(int h) const { return Copies[Original[h]]; }
   /// Among the copies of h, one that holds any of `triangles`; -1 if none.
   int copyHolding(int h, const std::vector<int>& triangles) const;
+  /// Among the copies of h, one that holds `triangle`; -1 if none.
+  int copyHolding(int h, int triangle) const;
 
   /// Follows a collision cut: pieces take their parent's place in the
   /// hexahedra they meet, touched hexahedra are split into branches (new

@@ -234,7 +234,7 @@ bool TissueCutter::moveToBranchCopy(int v)
   const int triangle = Visual.collisionTriangleOf(v, Collision);
   if (triangle < 0)
     return false;
-  int holder = Branches.copyHolding(h, { triangle });
+  int holder = Branches.copyHolding(h, triangle);
   if (holder < 0)
   {
     std::vector<int> around;
@@ -285,11 +285,18 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
     for (int v = firstNew; v < static_cast<int>(rest.size()); ++v)
       VisualOfHexahedron[Branches.originalOf(VisualEmbedding.hexahedron(v))].push_back(v);
   }
-  // The vertices of touched hexahedra and those rebound by the cut.
+  // The vertices rebound by the cut, and those of hexahedra that got a new
+  // copy (a touched hexahedron that was not split keeps its triangles, and
+  // its vertices not rebound keep their place).
   std::vector<int> vertices = report.visual.reboundVertices;
-  for (int h : report.simulation.touchedHexahedra)
+  std::vector<int> split;
+  for (const auto& [copy, source] : report.simulation.newHexahedra)
+    split.push_back(Branches.originalOf(source));
+  std::sort(split.begin(), split.end());
+  split.erase(std::unique(split.begin(), split.end()), split.end());
+  for (int original : split)
   {
-    const auto& inside = VisualOfHexahedron[Branches.originalOf(h)];
+    const auto& inside = VisualOfHexahedron[original];
     vertices.insert(vertices.end(), inside.begin(), inside.end());
   }
   std::sort(vertices.begin(), vertices.end());

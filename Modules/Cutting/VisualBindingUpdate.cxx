@@ -52,8 +52,10 @@ void CuttableVisualMesh::rebindSplitRegions(CutContext& context)
 {
   for (RegionCut& region : context.regions)
   {
-    const std::unordered_map<int, char> onCut = bindCrossingVertices(region, context);
+    context.activate(region);
+    const std::vector<char> onCut = bindCrossingVertices(region, context);
     assignPieces(region, onCut, context);
+    context.deactivate(region);
   }
 }
 
@@ -61,8 +63,7 @@ void CuttableVisualMesh::rebindSplitRegions(CutContext& context)
 // along the straight 2D cut. Two cuts from one collision vertex at a very
 // small angle may share their first visual vertices: those are bound to
 // that collision vertex.
-std::unordered_map<int, char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region,
-  CutContext& context)
+std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, CutContext& context)
 {
   const int side = region.side > 0 ? 1 : -1;
   std::unordered_map<int, std::vector<int>> crossingsOf;
@@ -72,16 +73,20 @@ std::unordered_map<int, char> CuttableVisualMesh::bindCrossingVertices(RegionCut
     for (std::size_t i = 1; i + 1 < vertices.size(); ++i)
       crossingsOf[vertices[i]].push_back(static_cast<int>(c));
   }
-  std::unordered_map<int, char> onCut;
+  std::vector<char> onCut(region.vertices.size(), 0); // per local vertex
   for (const auto& [w, crossings] : crossingsOf)
   {
+    const int local = context.local(w);
+    if (local < 0)
+      throw Error("visual cut of '" + Mesh.name + "': visual vertex " + std::to_string(w) +
+                  " of a traced cut lies outside its region");
     const CrossingPath& first = region.crossings[crossings.front()];
     if (crossings.size() == 1)
     {
       // Along the cut in the plane it was traced in: increasing along it.
       const Vector2 d = first.planar[1] - first.planar[0];
       const double s =
-        std::clamp((region.planar.at(w) - first.planar[0]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        std::clamp((region.planar[local] - first.planar[0]).dot(d) / d.squaredNorm(), 0.0, 1.0);
       bindToEdge(w, first.ends[0], first.ends[1], s, side);
     }
     else
@@ -107,7 +112,7 @@ std::unordered_map<int, char> CuttableVisualMesh::bindCrossingVertices(RegionCut
       b.side = side;
       b.parameters = Vector3(1.0, 0.0, 0.0);
     }
-    onCut[w] = 1;
+    onCut[local] = 1;
     context.rebound.push_back(w);
   }
   for (const CrossingPath& crossing : region.crossings)
@@ -131,11 +136,10 @@ std::unordered_map<int, char> CuttableVisualMesh::bindCrossingVertices(RegionCut
 // not per triangle, keeps a vertex and all its triangles in one region
 // where the parameterisation folds.
 void CuttableVisualMesh::assignPieces(RegionCut& region,
-  const std::unordered_map<int, char>& onCut,
+  const std::vector<char>& onCut,
   CutContext& context)
 {
   const CollisionTriangleSplit& split = context.cut->splits[region.split];
-  const int side = region.side > 0 ? 1 : -1;
   std::vector<Eigen::Matrix3d> inverses;
   for (const auto& corners : split.childCorners)
   {
@@ -144,75 +148,109 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
       m.row(k) = corners[k].transpose();
     inverses.push_back(m.inverse());
   }
-  std::unordered_map<std::uint64_t, char> onCutEdge;
+  // The new triangles in local vertices, and around each local vertex
+  // (compressed rows): the region is active, everything is dense.
+  const std::size_t count = region.vertices.size();
+  const std::size_t triangleCount = region.newTriangles.size();
+  std::vector<Triangle> corners(triangleCount);
+  std::vector<int> offsets(count + 1, 0);
+  for (std::size_t i = 0; i < triangleCount; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      corners[i][k] = context.local(Mesh.triangles[region.newTriangles[i]][k]);
+      ++offsets[corners[i][k] + 1];
+    }
+  for (std::size_t v = 0; v < count; ++v)
+    offsets[v + 1] += offsets[v];
+  std::vector<int> around(offsets.back());
+  {
+    std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
+    for (std::size_t i = 0; i < triangleCount; ++i)
+      for (int v : corners[i])
+        around[cursor[v]++] = static_cast<int>(i);
+  }
+  // Edges along the traced cuts (local, lower first), sorted.
+  std::vector<std::pair<int, int>> cutEdges;
   for (const CrossingPath& crossing : region.crossings)
     for (std::size_t i = 0; i + 1 < crossing.vertices.size(); ++i)
-      onCutEdge[edgeKey(crossing.vertices[i], crossing.vertices[i + 1])] = 1;
-  // Triangles beside each edge: (edge, triangle) pairs sorted by edge.
-  std::vector<std::pair<std::uint64_t, int>> sides;
-  sides.reserve(3 * region.newTriangles.size());
-  for (std::size_t i = 0; i < region.newTriangles.size(); ++i)
+    {
+      const int a = context.local(crossing.vertices[i]);
+      const int b = context.local(crossing.vertices[i + 1]);
+      cutEdges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(cutEdges.begin(), cutEdges.end());
+  auto isCutEdge = [&cutEdges](int a, int b)
   {
-    const Triangle& tri = Mesh.triangles[region.newTriangles[i]];
-    for (int k = 0; k < 3; ++k)
-      sides.emplace_back(edgeKey(tri[k], tri[(k + 1) % 3]), static_cast<int>(i));
-  }
-  std::sort(sides.begin(), sides.end());
-  auto trianglesBeside = [&sides](std::uint64_t key)
-  {
-    return std::equal_range(sides.begin(),
-      sides.end(),
-      std::make_pair(key, 0),
-      [](const auto& x, const auto& y) { return x.first < y.first; });
+    return std::binary_search(
+      cutEdges.begin(), cutEdges.end(), std::make_pair(std::min(a, b), std::max(a, b)));
   };
-  std::vector<int> piece(region.newTriangles.size(), -1);
-  for (std::size_t seed = 0; seed < piece.size(); ++seed)
+  std::vector<int> piece(triangleCount, -1);
+  std::vector<int> members;
+  for (std::size_t seed = 0; seed < triangleCount; ++seed)
   {
     if (piece[seed] >= 0)
       continue;
-    std::vector<int> members{ static_cast<int>(seed) };
+    members.assign(1, static_cast<int>(seed));
     piece[seed] = static_cast<int>(seed);
     Vector2 centroid = Vector2::Zero();
     for (std::size_t m = 0; m < members.size(); ++m)
     {
-      const Triangle& tri = Mesh.triangles[region.newTriangles[members[m]]];
+      const Triangle& tri = corners[members[m]];
       for (int v : tri)
-        centroid += region.planar.at(v) / 3.0;
+        centroid += region.planar[v] / 3.0;
       for (int k = 0; k < 3; ++k)
       {
-        const std::uint64_t key = edgeKey(tri[k], tri[(k + 1) % 3]);
-        if (onCutEdge.count(key))
+        const int a = tri[k], b = tri[(k + 1) % 3];
+        if (isCutEdge(a, b))
           continue;
-        const auto [begin, end] = trianglesBeside(key);
-        for (auto other = begin; other != end; ++other)
-          if (piece[other->second] < 0)
+        for (int j = offsets[a]; j < offsets[a + 1]; ++j)
+        {
+          const int other = around[j];
+          const Triangle& o = corners[other];
+          if (piece[other] < 0 && (o[0] == b || o[1] == b || o[2] == b))
           {
-            piece[other->second] = static_cast<int>(seed);
-            members.push_back(other->second);
+            piece[other] = static_cast<int>(seed);
+            members.push_back(other);
           }
+        }
       }
     }
     const int c = pieceContaining(region.pieces, centroid / static_cast<double>(members.size()));
-    const int child = split.children[c];
-    for (int m : members)
+    rebindPiece(region, members, corners, onCut, split.children[c], inverses[c], context);
+  }
+}
+
+// A piece of a split region goes to collision triangle `child`; its inner
+// vertices are rebound there by formula 5-2, (a', b', c') = (a, b, c) M^-1.
+void CuttableVisualMesh::rebindPiece(const RegionCut& region,
+  const std::vector<int>& members,
+  const std::vector<Triangle>& corners,
+  const std::vector<char>& onCut,
+  int child,
+  const Eigen::Matrix3d& inverse,
+  CutContext& context)
+{
+  const int parent = context.cut->splits[region.split].parent;
+  const int side = region.side > 0 ? 1 : -1;
+  for (int m : members)
+  {
+    const int t = region.newTriangles[m];
+    TriangleRegion[t] = child;
+    TriangleSide[t] = static_cast<std::int8_t>(side);
+    Regions[child][region.side].push_back(t);
+    for (int local : corners[m])
     {
-      const int t = region.newTriangles[m];
-      TriangleRegion[t] = child;
-      TriangleSide[t] = static_cast<std::int8_t>(side);
-      Regions[child][region.side].push_back(t);
-      for (int v : Mesh.triangles[t])
-      {
-        VisualVertexBinding& b = Bindings[v];
-        if (b.kind != BindingKind::CollisionTriangle || b.element != split.parent || onCut.count(v))
-          continue;
-        // The parent parameters of where the vertex lies in the plane it
-        // was cut in (its binding's own, unless a fold was repaired there).
-        const Vector3 x = barycentricIn(region.frame, region.planar.at(v));
-        const Vector3 y = (x.transpose() * inverses[c]).transpose();
-        b.element = child;
-        b.parameters = y.cwiseMax(0.0) / y.cwiseMax(0.0).sum();
-        context.rebound.push_back(v);
-      }
+      const int v = region.vertices[local];
+      VisualVertexBinding& b = Bindings[v];
+      if (b.kind != BindingKind::CollisionTriangle || b.element != parent || onCut[local])
+        continue;
+      // The parent parameters of where the vertex lies in the plane it
+      // was cut in (its binding's own, unless a fold was repaired there).
+      const Vector3 x = barycentricIn(region.frame, region.planar[local]);
+      const Vector3 y = (x.transpose() * inverse).transpose();
+      b.element = child;
+      b.parameters = y.cwiseMax(0.0) / y.cwiseMax(0.0).sum();
+      context.rebound.push_back(v);
     }
   }
 }
@@ -494,10 +532,23 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
       context.originalOf.emplace(made.vertex, made.duplicateOf);
   }
   Regions.resize(collision.triangleCount());
-  splitEdgePaths(context);
-  traceRegionCuts(context);
-  remeshRegions(context);
-  rebindSplitRegions(context);
+  // The local-index scratch is lent to the cut and comes back all -1 (on an
+  // error too: the regions active then are unknown).
+  context.localIndex.swap(LocalIndexScratch);
+  try
+  {
+    splitEdgePaths(context);
+    traceRegionCuts(context);
+    remeshRegions(context);
+    rebindSplitRegions(context);
+  }
+  catch (...)
+  {
+    std::fill(context.localIndex.begin(), context.localIndex.end(), -1);
+    LocalIndexScratch.swap(context.localIndex);
+    throw;
+  }
+  LocalIndexScratch.swap(context.localIndex);
   finishEdgePoints(context);
   openVisualMesh(collision, context);
   updateEdgePaths(collision, context);

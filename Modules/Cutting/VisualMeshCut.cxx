@@ -134,24 +134,26 @@ Vector2 bulgedPoint(const std::array<Vector2, 3>& frame, const Vector3& paramete
 
 /// Tutte's embedding of a region: border vertices at their (bulged)
 /// parameters, inner vertices each at the average of its neighbours. With
-/// a strictly convex border no triangle folds or flattens.
-std::unordered_map<int, Vector2> tutteEmbedding(const std::unordered_map<int, Vector3>& parameters,
+/// a strictly convex border no triangle folds or flattens. Local vertex
+/// indices (RegionCut).
+std::vector<Vector2> tutteEmbedding(const std::vector<Vector3>& parameters,
   const std::vector<Triangle>& triangles,
-  const std::vector<VisualVertexBinding>& bindings,
+  const std::vector<char>& isInner,
   const std::array<Vector2, 3>& frame)
 {
-  std::unordered_map<int, Vector2> planar;
-  std::unordered_map<int, int> inner;
+  const std::size_t count = parameters.size();
+  std::vector<Vector2> planar(count, Vector2::Zero());
+  std::vector<int> innerIndex(count, -1);
   std::vector<int> innerVertices;
-  for (const auto& [v, x] : parameters)
+  for (std::size_t v = 0; v < count; ++v)
   {
-    if (bindings[v].kind == BindingKind::CollisionTriangle)
+    if (isInner[v])
     {
-      inner.emplace(v, static_cast<int>(innerVertices.size()));
-      innerVertices.push_back(v);
+      innerIndex[v] = static_cast<int>(innerVertices.size());
+      innerVertices.push_back(static_cast<int>(v));
     }
     else
-      planar.emplace(v, bulgedPoint(frame, x));
+      planar[v] = bulgedPoint(frame, parameters[v]);
   }
   if (innerVertices.empty())
     return planar;
@@ -159,13 +161,12 @@ std::unordered_map<int, Vector2> tutteEmbedding(const std::unordered_map<int, Ve
   for (const Triangle& tri : triangles)
     for (int k = 0; k < 3; ++k)
     {
-      const auto found = inner.find(tri[k]);
-      if (found == inner.end())
+      const int i = innerIndex[tri[k]];
+      if (i < 0)
         continue;
       for (int w : { tri[(k + 1) % 3], tri[(k + 2) % 3] })
-        if (std::find(neighbours[found->second].begin(), neighbours[found->second].end(), w) ==
-            neighbours[found->second].end())
-          neighbours[found->second].push_back(w);
+        if (std::find(neighbours[i].begin(), neighbours[i].end(), w) == neighbours[i].end())
+          neighbours[i].push_back(w);
     }
   const int n = static_cast<int>(innerVertices.size());
   std::vector<Eigen::Triplet<double>> entries;
@@ -175,11 +176,10 @@ std::unordered_map<int, Vector2> tutteEmbedding(const std::unordered_map<int, Ve
     entries.emplace_back(i, i, static_cast<double>(neighbours[i].size()));
     for (int w : neighbours[i])
     {
-      const auto found = inner.find(w);
-      if (found != inner.end())
-        entries.emplace_back(i, found->second, -1.0);
+      if (innerIndex[w] >= 0)
+        entries.emplace_back(i, innerIndex[w], -1.0);
       else
-        rhs.row(i) += planar.at(w).transpose();
+        rhs.row(i) += planar[w].transpose();
     }
   }
   Eigen::SparseMatrix<double> laplacian(n, n);
@@ -187,7 +187,7 @@ std::unordered_map<int, Vector2> tutteEmbedding(const std::unordered_map<int, Ve
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
   const Eigen::MatrixX2d x = solver.solve(rhs);
   for (int i = 0; i < n; ++i)
-    planar.emplace(innerVertices[i], x.row(i).transpose());
+    planar[innerVertices[i]] = x.row(i).transpose();
   return planar;
 }
 
@@ -197,14 +197,15 @@ double cross2(const Vector2& a, const Vector2& b)
 }
 
 /// Triangles whose orientation in the plane differs from the region's.
-std::vector<int> foldedTriangles(const std::unordered_map<int, Vector2>& planar,
+std::vector<int> foldedTriangles(const std::vector<Vector2>& planar,
   const std::vector<Triangle>& triangles)
 {
   std::vector<double> areas;
+  areas.reserve(triangles.size());
   double total = 0.0;
   for (const Triangle& t : triangles)
   {
-    areas.push_back(cross2(planar.at(t[1]) - planar.at(t[0]), planar.at(t[2]) - planar.at(t[0])));
+    areas.push_back(cross2(planar[t[1]] - planar[t[0]], planar[t[2]] - planar[t[0]]));
     total += areas.back();
   }
   std::vector<int> folded;
@@ -220,42 +221,42 @@ std::vector<int> foldedTriangles(const std::unordered_map<int, Vector2>& planar,
 /// inner vertices around the fold are moved to the average of their
 /// neighbours until it unfolds (Tutte's embedding of the whole region if
 /// that does not do); every other vertex stays where its binding puts it.
-std::unordered_map<int, Vector2> regionPlane(const std::unordered_map<int, Vector3>& parameters,
+/// Local vertex indices (RegionCut).
+std::vector<Vector2> regionPlane(const std::vector<Vector3>& parameters,
   const std::vector<Triangle>& triangles,
-  const std::vector<VisualVertexBinding>& bindings,
+  const std::vector<char>& isInner,
   const std::array<Vector2, 3>& frame)
 {
-  std::unordered_map<int, Vector2> planar;
-  for (const auto& [v, x] : parameters)
-    planar.emplace(v, bulgedPoint(frame, x));
-  auto inner = [&](int v) { return bindings[v].kind == BindingKind::CollisionTriangle; };
+  const std::size_t count = parameters.size();
+  std::vector<Vector2> planar(count);
+  for (std::size_t v = 0; v < count; ++v)
+    planar[v] = bulgedPoint(frame, parameters[v]);
   for (int round = 0; round < 32; ++round)
   {
     const std::vector<int> folded = foldedTriangles(planar, triangles);
     if (folded.empty())
       return planar;
-    std::unordered_map<int, char> moving;
+    std::vector<char> moving(count, 0);
     for (int t : folded)
       for (int v : triangles[t])
-        if (inner(v))
-          moving[v] = 1;
-    std::unordered_map<int, std::pair<Vector2, int>> sums;
+        moving[v] = isInner[v];
+    std::vector<Vector2> sums(count, Vector2::Zero());
+    std::vector<int> neighbourCount(count, 0);
     for (const Triangle& t : triangles)
       for (int k = 0; k < 3; ++k)
-        if (moving.count(t[k]))
+        if (moving[t[k]])
           for (int w : { t[(k + 1) % 3], t[(k + 2) % 3] })
           {
-            auto& [sum, count] =
-              sums.emplace(t[k], std::make_pair(Vector2::Zero().eval(), 0)).first->second;
-            sum += planar.at(w);
-            ++count;
+            sums[t[k]] += planar[w];
+            ++neighbourCount[t[k]];
           }
-    for (const auto& [v, sum] : sums)
-      planar[v] = sum.first / sum.second;
+    for (std::size_t v = 0; v < count; ++v)
+      if (neighbourCount[v] > 0)
+        planar[v] = sums[v] / neighbourCount[v];
   }
   return foldedTriangles(planar, triangles).empty()
            ? planar
-           : tutteEmbedding(parameters, triangles, bindings, frame);
+           : tutteEmbedding(parameters, triangles, isInner, frame);
 }
 
 int cornerIndex(const Vector3& barycentric)
@@ -686,14 +687,26 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
       region.split = static_cast<int>(s);
       region.side = side;
       region.triangles = Regions[split.parent][side];
+      // Local vertices (CutContext::localIndex), the triangles in them.
       std::vector<Triangle> triangles;
+      triangles.reserve(region.triangles.size());
       for (int t : region.triangles)
-        triangles.push_back(Mesh.triangles[t]);
-      for (int v : regionVertices(region.triangles))
       {
-        region.parameters.emplace(v, parametersIn(v, split.parent, split.parentCorners));
+        Triangle local;
+        for (int k = 0; k < 3; ++k)
+        {
+          const int v = Mesh.triangles[t][k];
+          if (context.local(v) < 0)
+            context.addToActive(
+              region, v, parametersIn(v, split.parent, split.parentCorners), Vector2::Zero());
+          local[k] = context.local(v);
+        }
+        triangles.push_back(local);
       }
-      region.planar = regionPlane(region.parameters, triangles, Bindings, frame);
+      std::vector<char> isInner(region.vertices.size());
+      for (std::size_t i = 0; i < region.vertices.size(); ++i)
+        isInner[i] = Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle;
+      region.planar = regionPlane(region.parameters, triangles, isInner, frame);
       region.frame = frame;
       for (const auto& corners : split.childCorners)
         region.pieces.push_back({ { bulgedPoint(frame, corners[0]),
@@ -707,19 +720,10 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
         traceCut(region, scale, traced, context);
         region.crossings.push_back(std::move(traced));
       }
+      context.deactivate(region);
       context.regions.push_back(std::move(region));
     }
   }
-}
-
-std::vector<int> CuttableVisualMesh::regionVertices(const std::vector<int>& triangles) const
-{
-  std::vector<int> vertices;
-  for (int t : triangles)
-    vertices.insert(vertices.end(), Mesh.triangles[t].begin(), Mesh.triangles[t].end());
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  return vertices;
 }
 
 SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
@@ -731,16 +735,18 @@ SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
   if (corner < 0)
     return context.edgePoints[context.edgePointOf.at(vertex)].visual[region.side];
   const int paired = Paired[vertex][region.side];
-  if (region.parameters.count(paired))
+  if (context.local(paired) >= 0)
     return SurfacePoint::atVertex(paired);
   // The paths from this corner share their first segment with another
-  // edge's path, so the region starts where they part: at its vertex
-  // nearest the corner.
-  int nearest = -1;
-  for (const auto& [v, x] : region.parameters)
-    if (nearest < 0 || x[corner] > region.parameters.at(nearest)[corner])
-      nearest = v;
-  return SurfacePoint::atVertex(nearest);
+  // edge's path (a touch the binding could not undo), so the region starts
+  // where they part: at its vertex nearest the corner.
+  if (region.vertices.empty())
+    throw Error("visual cut of '" + Mesh.name + "': an empty region");
+  std::size_t nearest = 0;
+  for (std::size_t i = 1; i < region.parameters.size(); ++i)
+    if (region.parameters[i][corner] > region.parameters[nearest][corner])
+      nearest = i;
+  return SurfacePoint::atVertex(region.vertices[nearest]);
 }
 
 void CuttableVisualMesh::traceCut(const RegionCut& region,
@@ -748,12 +754,23 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
   CrossingPath& crossing,
   const CutContext& context) const
 {
-  const std::unordered_map<int, Vector2>& planar = region.planar;
+  // The region is active (CutContext::localIndex): its vertices' planar
+  // points and signed distances are dense arrays.
+  auto localOf = [&](int v)
+  {
+    const int i = context.local(v);
+    if (i < 0)
+      throw Error("visual cut of '" + Mesh.name + "': the cut from collision vertex " +
+                  std::to_string(crossing.ends[0]) + " to " + std::to_string(crossing.ends[1]) +
+                  " starts or ends at visual vertex " + std::to_string(v) +
+                  ", outside its region on side " + std::to_string(region.side));
+    return i;
+  };
   auto pointOf = [&](const SurfacePoint& p) -> Vector2
   {
-    return p.isVertex() ? planar.at(p.vertex)
-                        : Vector2((1.0 - p.edgeParameter) * planar.at(p.edgeStart) +
-                                  p.edgeParameter * planar.at(p.edgeEnd));
+    return p.isVertex() ? region.planar[localOf(p.vertex)]
+                        : Vector2((1.0 - p.edgeParameter) * region.planar[localOf(p.edgeStart)] +
+                                  p.edgeParameter * region.planar[localOf(p.edgeEnd)]);
   };
   const SurfacePoint start =
     featurePoint(region, crossing.ends[0], crossing.barycentric[0], context);
@@ -771,40 +788,40 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
     SurfacePoint point;
   };
   std::vector<Node> nodes{ { 0.0, start }, { 1.0, end } };
-  std::unordered_map<int, double> signedDistance;
-  signedDistance.reserve(region.parameters.size());
-  std::unordered_map<int, int> vertexNode;
+  const std::size_t count = region.vertices.size();
+  std::vector<double> signedDistance(count);
+  std::vector<int> vertexNode(count, -1); // per local vertex
   std::unordered_map<std::uint64_t, int> edgeNode;
   for (int n = 0; n < 2; ++n)
   {
     const SurfacePoint& p = nodes[n].point;
     if (p.isVertex())
-      vertexNode[p.vertex] = n;
+      vertexNode[localOf(p.vertex)] = n;
     else
       edgeNode[edgeKey(p.edgeStart, p.edgeEnd)] = n;
   }
-  for (const auto& [v, parameters] : region.parameters)
+  for (std::size_t i = 0; i < count; ++i)
   {
-    const Vector2 x = planar.at(v) - from;
+    const Vector2 x = region.planar[i] - from;
     const double d = cross2(along, x) / length;
-    signedDistance.emplace(v, d);
+    signedDistance[i] = d;
     const double s = x.dot(along) / (length * length);
     // Only inner vertices: the cut meets the region's border at its ends.
-    if (Bindings[v].kind == BindingKind::CollisionTriangle && std::abs(d) < tolerance &&
-        s > CutEndMargin && s < 1.0 - CutEndMargin && !vertexNode.count(v))
+    if (Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle &&
+        std::abs(d) < tolerance && s > CutEndMargin && s < 1.0 - CutEndMargin && vertexNode[i] < 0)
     {
-      vertexNode[v] = static_cast<int>(nodes.size());
-      nodes.push_back({ s, SurfacePoint::atVertex(v) });
+      vertexNode[i] = static_cast<int>(nodes.size());
+      nodes.push_back({ s, SurfacePoint::atVertex(region.vertices[i]) });
     }
   }
-  // The cut's ends lie on the line whatever round-off says.
-  auto onLine = [&](int v)
+  // The cut's ends lie on the line whatever round-off says (local indices).
+  auto onLine = [&](int i)
   {
-    const auto node = vertexNode.find(v);
-    return (node != vertexNode.end() && node->second < 2) ||
-           (Bindings[v].kind == BindingKind::CollisionTriangle &&
-             std::abs(signedDistance.at(v)) < tolerance);
+    return (vertexNode[i] >= 0 && vertexNode[i] < 2) ||
+           (Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle &&
+             std::abs(signedDistance[i]) < tolerance);
   };
+  const bool endsAtVertices = nodes[0].point.isVertex() || nodes[1].point.isVertex();
   // Per region triangle, the crossing points on its border; a triangle
   // with two joins them (the cut passes through it).
   std::unordered_map<int, std::vector<int>> links;
@@ -812,35 +829,37 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
   for (int t : region.triangles)
   {
     const Triangle& tri = Mesh.triangles[t];
+    const int l0 = context.local(tri[0]), l1 = context.local(tri[1]), l2 = context.local(tri[2]);
     // Most triangles lie wholly on one side of the line: nothing to do.
-    const double d0 = signedDistance.at(tri[0]), d1 = signedDistance.at(tri[1]),
-                 d2 = signedDistance.at(tri[2]);
+    const double d0 = signedDistance[l0], d1 = signedDistance[l1], d2 = signedDistance[l2];
     if (((d0 > tolerance && d1 > tolerance && d2 > tolerance) ||
           (d0 < -tolerance && d1 < -tolerance && d2 < -tolerance)) &&
-        !vertexNode.count(tri[0]) && !vertexNode.count(tri[1]) && !vertexNode.count(tri[2]) &&
-        (nodes[0].point.isVertex() || nodes[1].point.isVertex() ||
+        vertexNode[l0] < 0 && vertexNode[l1] < 0 && vertexNode[l2] < 0 &&
+        (endsAtVertices ||
           (!edgeNode.count(edgeKey(tri[0], tri[1])) && !edgeNode.count(edgeKey(tri[1], tri[2])) &&
             !edgeNode.count(edgeKey(tri[2], tri[0])))))
       continue;
     here.clear();
+    const int locals[3] = { l0, l1, l2 };
     for (int k = 0; k < 3; ++k)
     {
       const int a = tri[k], b = tri[(k + 1) % 3];
-      if (vertexNode.count(a) && (vertexNode.at(a) < 2 || onLine(a)))
-        here.push_back(vertexNode.at(a));
+      const int la = locals[k], lb = locals[(k + 1) % 3];
+      if (vertexNode[la] >= 0 && (vertexNode[la] < 2 || onLine(la)))
+        here.push_back(vertexNode[la]);
       const std::uint64_t key = edgeKey(a, b);
       auto found = edgeNode.find(key);
-      if (found == edgeNode.end() && !onLine(a) && !onLine(b) &&
-          (signedDistance.at(a) > 0) != (signedDistance.at(b) > 0))
+      if (found == edgeNode.end() && !onLine(la) && !onLine(lb) &&
+          (signedDistance[la] > 0) != (signedDistance[lb] > 0))
       {
         // Never onto a vertex of the region's border (it keeps its own
         // binding): a round-off crossing there stays a little inside.
-        double lambda = signedDistance.at(a) / (signedDistance.at(a) - signedDistance.at(b));
+        double lambda = signedDistance[la] / (signedDistance[la] - signedDistance[lb]);
         if (Bindings[a].kind != BindingKind::CollisionTriangle)
           lambda = std::max(lambda, BorderClearance);
         if (Bindings[b].kind != BindingKind::CollisionTriangle)
           lambda = std::min(lambda, 1.0 - BorderClearance);
-        const Vector2 x = (1.0 - lambda) * planar.at(a) + lambda * planar.at(b) - from;
+        const Vector2 x = (1.0 - lambda) * region.planar[la] + lambda * region.planar[lb] - from;
         // Near an end the parameterisation may put a crossing a little
         // beyond it: kept (only the walk decides what the path visits).
         const double s = x.dot(along) / (length * length);
@@ -907,22 +926,38 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
   for (std::size_t r = 0; r < context.regions.size(); ++r)
   {
     RegionCut& region = context.regions[r];
-    std::unordered_set<int> vertexPoints;
-    std::unordered_set<std::uint64_t> edgePoints;
+    // Per local vertex: 1 if a traced path passes it, 2 if a path crosses
+    // an edge from it (then the edge is looked up).
+    context.activate(region);
+    std::vector<char> mark(region.vertices.size(), 0);
+    std::vector<std::uint64_t> edgePoints;
     for (const CrossingPath& crossing : region.crossings)
       for (const SurfacePoint& point : crossing.path.points)
       {
         if (point.isVertex())
-          vertexPoints.insert(point.vertex);
+          mark[context.local(point.vertex)] |= 1;
         else
-          edgePoints.insert(edgeKey(point.edgeStart, point.edgeEnd));
+        {
+          mark[context.local(point.edgeStart)] |= 2;
+          mark[context.local(point.edgeEnd)] |= 2;
+          edgePoints.push_back(edgeKey(point.edgeStart, point.edgeEnd));
+        }
       }
+    std::sort(edgePoints.begin(), edgePoints.end());
+    auto crossed = [&](int a, int b, char ma, char mb)
+    {
+      return (ma & 2) && (mb & 2) &&
+             std::binary_search(edgePoints.begin(), edgePoints.end(), edgeKey(a, b));
+    };
     for (int t : region.triangles)
     {
       const Triangle& tri = Mesh.triangles[t];
-      bool touched = false;
+      const char m[3] = {
+        mark[context.local(tri[0])], mark[context.local(tri[1])], mark[context.local(tri[2])]
+      };
+      bool touched = (m[0] | m[1] | m[2]) & 1;
       for (int k = 0; k < 3 && !touched; ++k)
-        touched = vertexPoints.count(tri[k]) || edgePoints.count(edgeKey(tri[k], tri[(k + 1) % 3]));
+        touched = crossed(tri[k], tri[(k + 1) % 3], m[k], m[(k + 1) % 3]);
       if (touched)
       {
         triangles.push_back(t);
@@ -933,6 +968,7 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
         region.newTriangles.push_back(t);
       }
     }
+    context.deactivate(region);
   }
   if (triangles.empty())
     return;
@@ -988,53 +1024,64 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
   }
 
   // Parameters of every vertex in its region's parent (inserted vertices
-  // interpolated along the edge they were inserted in), then the triangles.
-  auto parametersOf = [&](RegionCut& region, int i) -> Vector3
-  {
-    if (i < localCount)
-      return region.parameters.at(global[i]);
-    const SurfacePoint& on = remeshed.insertedOn[i - localCount];
-    return (1.0 - on.edgeParameter) * region.parameters.at(global[on.edgeStart]) +
-           on.edgeParameter * region.parameters.at(global[on.edgeEnd]);
-  };
+  // interpolated along the edge they were inserted in), then the triangles,
+  // region by region (each active in turn).
+  std::vector<std::vector<int>> outputOf(context.regions.size());
+  for (std::size_t j = 0; j < out.triangleCount(); ++j)
+    outputOf[regionOfLocal[remeshed.inputTriangle[j]]].push_back(static_cast<int>(j));
   for (RegionCut& region : context.regions)
     Regions[context.cut->splits[region.split].parent][region.side].clear();
-  std::vector<std::pair<int, int>> placed; // (global triangle, region)
-  for (std::size_t j = 0; j < out.triangleCount(); ++j)
+  for (std::size_t r = 0; r < context.regions.size(); ++r)
   {
-    const int r = regionOfLocal[remeshed.inputTriangle[j]];
     RegionCut& region = context.regions[r];
-    const Triangle& corners = out.triangles[j];
-    Triangle mapped{ { global[corners[0]], global[corners[1]], global[corners[2]] } };
-    for (int k = 0; k < 3; ++k)
+    context.activate(region);
+    for (int j : outputOf[r])
     {
-      if (region.parameters.count(mapped[k]))
-        continue;
-      region.parameters.emplace(mapped[k], parametersOf(region, corners[k]));
-      const SurfacePoint& on = remeshed.insertedOn[corners[k] - localCount];
-      region.planar.emplace(mapped[k],
-        (1.0 - on.edgeParameter) * region.planar.at(global[on.edgeStart]) +
-          on.edgeParameter * region.planar.at(global[on.edgeEnd]));
+      const Triangle& corners = out.triangles[j];
+      const Triangle mapped{ { global[corners[0]], global[corners[1]], global[corners[2]] } };
+      for (int k = 0; k < 3; ++k)
+      {
+        if (context.local(mapped[k]) >= 0)
+          continue;
+        const auto misplaced = [&]
+        {
+          return Error("visual cut of '" + Mesh.name + "': re-meshing put visual vertex " +
+                       std::to_string(mapped[k]) + " in a region it does not belong to");
+        };
+        if (corners[k] < localCount)
+          throw misplaced();
+        const SurfacePoint& on = remeshed.insertedOn[corners[k] - localCount];
+        const int a = context.local(global[on.edgeStart]);
+        const int b = context.local(global[on.edgeEnd]);
+        if (a < 0 || b < 0)
+          throw misplaced();
+        const double u = on.edgeParameter;
+        context.addToActive(region,
+          mapped[k],
+          (1.0 - u) * region.parameters[a] + u * region.parameters[b],
+          (1.0 - u) * region.planar[a] + u * region.planar[b]);
+      }
+      int t = -1;
+      if (static_cast<std::size_t>(j) < local.globalTriangle.size())
+      {
+        t = local.globalTriangle[j];
+        Mesh.triangles[t] = mapped;
+      }
+      else
+      {
+        t = addTriangle(mapped, -1, 0, VisualMaterial::Surface);
+      }
+      if (Mesh.hasTextureCoordinates())
+      {
+        const Triangle& tex = out.textureCorners[j];
+        Mesh.textureCorners[t] = {
+          { globalTexture[tex[0]], globalTexture[tex[1]], globalTexture[tex[2]] }
+        };
+      }
+      region.newTriangles.push_back(t);
+      context.changedTriangles.push_back(t);
     }
-    int t = -1;
-    if (j < local.globalTriangle.size())
-    {
-      t = local.globalTriangle[j];
-      Mesh.triangles[t] = mapped;
-    }
-    else
-    {
-      t = addTriangle(mapped, -1, 0, VisualMaterial::Surface);
-    }
-    if (Mesh.hasTextureCoordinates())
-    {
-      const Triangle& tex = out.textureCorners[j];
-      Mesh.textureCorners[t] = {
-        { globalTexture[tex[0]], globalTexture[tex[1]], globalTexture[tex[2]] }
-      };
-    }
-    region.newTriangles.push_back(t);
-    context.changedTriangles.push_back(t);
+    context.deactivate(region);
   }
   // The traced paths as visual vertices.
   std::size_t p = 0;

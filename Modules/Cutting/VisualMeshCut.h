@@ -152,7 +152,6 @@ private:
   std::vector<double> pathParameters(const std::vector<int>& path, int a, int b) const;
   void bindToEdge(int v, int a, int b, double fromA, int side);
 
-  std::vector<int> regionVertices(const std::vector<int>& triangles) const;
   SurfacePoint featurePoint(const RegionCut& region,
     int vertex,
     const Vector3& barycentric,
@@ -166,9 +165,14 @@ private:
   void traceRegionCuts(CutContext& context);
   void remeshRegions(CutContext& context);
   void rebindSplitRegions(CutContext& context);
-  std::unordered_map<int, char> bindCrossingVertices(RegionCut& region, CutContext& context);
-  void assignPieces(RegionCut& region,
-    const std::unordered_map<int, char>& onCut,
+  std::vector<char> bindCrossingVertices(RegionCut& region, CutContext& context);
+  void assignPieces(RegionCut& region, const std::vector<char>& onCut, CutContext& context);
+  void rebindPiece(const RegionCut& region,
+    const std::vector<int>& members,
+    const std::vector<Triangle>& corners,
+    const std::vector<char>& onCut,
+    int child,
+    const Eigen::Matrix3d& inverse,
     CutContext& context);
   void finishEdgePoints(CutContext& context);
   void openVisualMesh(const CuttableCollisionMesh& collision, CutContext& context);
@@ -196,6 +200,8 @@ private:
   std::unordered_map<int, std::vector<int>> EndColumns;
   std::vector<int> FreeTriangles;
   int CutSurfaceTexture = -1;
+  /// Per visual vertex, -1 between cuts (see CutContext::localIndex).
+  std::vector<int> LocalIndexScratch;
 };
 
 } // namespace thintissue

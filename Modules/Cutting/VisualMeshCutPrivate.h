@@ -47,10 +47,14 @@ struct CuttableVisualMesh::RegionCut
   int split = -1; ///< index into CollisionCutResult::splits
   int side = 0;   ///< 0: -, 1: +
   std::vector<int> triangles;
-  /// Barycentric parameters in the parent of every vertex of the region,
-  /// and its point in the plane the cuts are traced in (regionPlane).
-  std::unordered_map<int, Vector3> parameters;
-  std::unordered_map<int, Vector2> planar;
+  /// The region's vertices (local index -> visual vertex) and, per local
+  /// vertex, its barycentric parameters in the parent and its point in the
+  /// plane the cuts are traced in (regionPlane). Dense arrays: a region is
+  /// walked whole, and hash maps keyed by visual vertex cost more than the
+  /// work (CutContext::localIndex maps back while the region is active).
+  std::vector<int> vertices;
+  std::vector<Vector3> parameters;
+  std::vector<Vector2> planar;
   std::array<Vector2, 3> frame; ///< the parent's corners in the plane
   /// The pieces of the split triangle in that plane.
   std::vector<std::array<Vector2, 3>> pieces;
@@ -76,10 +80,42 @@ struct CuttableVisualMesh::CutContext
   std::vector<int> rebound;
   std::vector<int> changedTriangles;
 
+  /// Per visual vertex: its local index in the active region, else -1
+  /// (the mesh's scratch, lent for the cut: one region at a time).
+  std::vector<int> localIndex;
+
+  void activate(const RegionCut& region)
+  {
+    for (std::size_t i = 0; i < region.vertices.size(); ++i)
+      setLocal(region.vertices[i], static_cast<int>(i));
+  }
+  void deactivate(const RegionCut& region)
+  {
+    for (int v : region.vertices)
+      localIndex[v] = -1;
+  }
+  int local(int v) const { return v < static_cast<int>(localIndex.size()) ? localIndex[v] : -1; }
+  /// Appends a vertex to the active region.
+  void addToActive(RegionCut& region, int v, const Vector3& parameters, const Vector2& planar)
+  {
+    setLocal(v, static_cast<int>(region.vertices.size()));
+    region.vertices.push_back(v);
+    region.parameters.push_back(parameters);
+    region.planar.push_back(planar);
+  }
+
   int root(int v) const
   {
     const auto it = originalOf.find(v);
     return it == originalOf.end() ? v : it->second;
+  }
+
+private:
+  void setLocal(int v, int i)
+  {
+    if (v >= static_cast<int>(localIndex.size()))
+      localIndex.resize(static_cast<std::size_t>(v) + 1 + static_cast<std::size_t>(v) / 4, -1);
+    localIndex[v] = i;
   }
 };
 
