@@ -299,14 +299,19 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
     const auto& inside = VisualOfHexahedron[original];
     vertices.insert(vertices.end(), inside.begin(), inside.end());
   }
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  // Each once (marked, not sorted: the list is as long as the regions cut).
+  VisualSeen.resize(rest.size(), 0);
   std::vector<int> moved;
   for (int v : vertices)
   {
+    if (VisualSeen[v])
+      continue;
+    VisualSeen[v] = 1;
     if (moveToBranchCopy(v) || v >= firstNew)
       moved.push_back(v);
   }
+  for (int v : vertices)
+    VisualSeen[v] = 0;
   return moved;
 }
 

@@ -178,6 +178,8 @@ private:
   HexahedralEmbedding VisualEmbedding;
   /// Per original hexahedron: the visual vertices embedded in it or a copy.
   std::vector<std::vector<int>> VisualOfHexahedron;
+  /// Per visual vertex, 0 between cuts: marks while a cut re-embeds.
+  std::vector<char> VisualSeen;
   /// Per collision triangle: 1 while it is part of the tissue.
   std::vector<char> Active;
   double InitialArea = 0.0;

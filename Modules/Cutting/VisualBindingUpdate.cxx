@@ -561,10 +561,20 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
     return list;
   };
   result.newVertices = sorted(std::move(context.newVertices));
-  result.reboundVertices = sorted(std::move(context.rebound));
-  result.reboundVertices.insert(
-    result.reboundVertices.end(), result.newVertices.begin(), result.newVertices.end());
-  result.reboundVertices = sorted(std::move(result.reboundVertices));
+  // Each rebound vertex once, marked in the (all -1) local-index scratch.
+  std::vector<int>& seen = LocalIndexScratch;
+  if (seen.size() < Mesh.vertexCount())
+    seen.resize(Mesh.vertexCount(), -1);
+  result.reboundVertices.reserve(context.rebound.size() + result.newVertices.size());
+  for (const std::vector<int>* list : { &context.rebound, &result.newVertices })
+    for (int v : *list)
+      if (seen[v] == -1)
+      {
+        seen[v] = -2;
+        result.reboundVertices.push_back(v);
+      }
+  for (int v : result.reboundVertices)
+    seen[v] = -1;
   result.changedTriangles = sorted(std::move(context.changedTriangles));
   while (!result.changedTriangles.empty() &&
          result.changedTriangles.back() >= static_cast<int>(Mesh.triangleCount()))

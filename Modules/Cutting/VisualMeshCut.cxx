@@ -703,10 +703,16 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
         }
         triangles.push_back(local);
       }
+      // Room for the vertices the re-meshing adds (a reallocation would
+      // copy the whole region).
+      const std::size_t room = region.vertices.size() + 64 + region.vertices.size() / 8;
+      region.vertices.reserve(room);
+      region.parameters.reserve(room);
       std::vector<char> isInner(region.vertices.size());
       for (std::size_t i = 0; i < region.vertices.size(); ++i)
         isInner[i] = Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle;
       region.planar = regionPlane(region.parameters, triangles, isInner, frame);
+      region.planar.reserve(room);
       region.frame = frame;
       for (const auto& corners : split.childCorners)
         region.pieces.push_back({ { bulgedPoint(frame, corners[0]),

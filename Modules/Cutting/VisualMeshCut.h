@@ -66,7 +66,9 @@ struct VisualCutResult
   /// Visual vertices made (on the cut, copies where the mesh opened, cut
   /// surface), ascending.
   std::vector<int> newVertices;
-  /// Vertices whose binding changed (new ones included), ascending.
+  /// Vertices whose binding changed (new ones included), each once, in no
+  /// particular order (a cut rebinds whole regions: sorting them cost more
+  /// than any use of the order).
   std::vector<int> reboundVertices;
   /// Triangles rewritten or added, ascending.
   std::vector<int> changedTriangles;
