@@ -208,6 +208,13 @@ public:
     const HexahedralMesh& mesh,
     const std::vector<int>& candidateHexahedra = {},
     const HexahedralEmbeddingSettings& settings = {});
+  /// Room for `pointCount` points without reallocating (appendPoints on a
+  /// cut would otherwise copy every point's coordinates once in a while).
+  void reserve(std::size_t pointCount)
+  {
+    HexahedronOfPoint.reserve(pointCount);
+    LocalCoordinates.reserve(pointCount);
+  }
   /// Sets the hexahedron and local coordinates of one point directly (e.g. a
   /// vertex moved to the duplicate of its hexahedron by a cut). The
   /// hexahedron must be in the table (see updateHexahedra).

@@ -58,6 +58,9 @@ TissueCutter::TissueCutter(const VisualCollisionBinding& binding,
   Visual = CuttableVisualMesh(binding, settings.visual);
   HasVisual = true;
   VisualEmbedding.embed(Simulation, Visual.mesh().positions);
+  // Cuts add visual vertices: room for as many as the visual mesh reserves.
+  VisualEmbedding.reserve(Visual.mesh().positions.capacity());
+  VisualSeen.reserve(Visual.mesh().positions.capacity());
   VisualOfHexahedron.resize(Simulation.hexahedronCount());
   for (int v = 0; v < static_cast<int>(Visual.mesh().vertexCount()); ++v)
   {
