@@ -47,6 +47,23 @@ class MeniscusTest(unittest.TestCase):
         self.assertEqual(hexahedra.GetCellType(0), vtk.VTK_HEXAHEDRON)
         self.assertEqual(meniscus.GetAllMeshesOutput().GetNumberOfBlocks(), 4)
 
+    def test_segmented_meniscus(self):
+        # The segmentation-like test bed: voxelized at MRI spacing, blurred,
+        # iso-surfaced, in metres.
+        meniscus = thintissue.vtkMeniscusSource()
+        segmentation = thintissue.vtkSimulatedSegmentationFilter()
+        segmentation.SetInputConnection(meniscus.GetOutputPort(0))
+        segmentation.SetVoxelSpacing(0.3, 0.3, 0.9)
+        segmentation.SetOutputScale(0.001)
+        validation = thintissue.vtkTriangleMeshValidationFilter()
+        validation.SetInputConnection(segmentation.GetOutputPort())
+        validation.Update()
+        self.assertTrue(validation.GetClosedOutwardSingleSurface(), validation.GetReport())
+        bounds = segmentation.GetOutput().GetBounds()
+        self.assertLess(bounds[1] - bounds[0], 0.1)  # metres: a meniscus is a few cm
+        self.assertGreater(segmentation.GetOutput().GetNumberOfPoints(),
+                           meniscus.GetVisualOutput().GetNumberOfPoints())
+
     def test_bad_parameters_are_reported(self):
         sheet = thintissue.vtkThinSheetSource()
         sheet.SetWidth(-1.0)

@@ -1,0 +1,207 @@
+// vtkSimulatedSegmentationFilter: the segmentation-like test bed of issue 14
+// (procedural tissues voxelized, blurred, iso-surfaced, in odd units).
+#include "vtkSimulatedSegmentationFilter.h"
+
+#include "KneeModels.h"
+#include "MeniscusModel.h"
+#include "MeshValidation.h"
+#include "ThinSheetModel.h"
+#include "vtkThinTissueConversion.h"
+
+#include "ThinTissueVtkErrorObserver.h"
+
+#include <vtkCommand.h>
+#include <vtkExecutive.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+using namespace thintissue;
+using thintissue::testing::ErrorCounter;
+
+struct Segmented
+{
+  TriangleMesh mesh;
+  MeshValidationReport report;
+  std::array<double, 6> bounds;
+};
+
+Segmented segment(const TriangleMesh& tissue,
+  std::array<double, 3> spacing,
+  double noise = 0.0,
+  unsigned seed = 1,
+  double scale = 1.0)
+{
+  vtkNew<vtkSimulatedSegmentationFilter> filter;
+  filter->SetInputData(toPolyData(tissue));
+  filter->SetVoxelSpacing(spacing.data());
+  filter->SetNoiseAmplitude(noise);
+  filter->SetSeed(seed);
+  filter->SetOutputScale(scale);
+  filter->Update();
+  Segmented result;
+  result.mesh = fromPolyData(filter->GetOutput(), tissue.name + " segmented");
+  result.report = validateTriangleMesh(result.mesh);
+  filter->GetOutput()->GetBounds(result.bounds.data());
+  return result;
+}
+
+/// Errors of the filter and of its executive, counted.
+void observe(vtkSimulatedSegmentationFilter* filter, ErrorCounter* errors)
+{
+  filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+}
+
+double volumeOf(const TriangleMesh& mesh)
+{
+  return validateTriangleMesh(mesh).signedVolume;
+}
+
+} // namespace
+
+// At MRI spacing the meniscus comes back closed, in one piece, with its
+// volume and extent (the blur at mid-level keeps the volume of thick parts
+// and eats the thin inner rim a little).
+TEST(SimulatedSegmentation, TheMeniscusAtMriSpacingIsAClosedSurfaceOfItsVolume)
+{
+  const MeniscusModel meniscus = makeMeniscus();
+  const Segmented s = segment(meniscus.visual, { 0.3, 0.3, 0.9 });
+  EXPECT_TRUE(s.report.isClosedOutwardSingleSurface()) << s.report.toString();
+  EXPECT_GT(s.mesh.vertexCount(), meniscus.visual.vertexCount());
+  const double volume = volumeOf(meniscus.visual);
+  EXPECT_NEAR(s.report.signedVolume, volume, 0.1 * volume);
+  const BoundingBox box = meniscus.visual.boundingBox();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double voxel = axis == 2 ? 0.9 : 0.3;
+    EXPECT_NEAR(s.bounds[2 * axis], box.min()[axis], 1.5 * voxel) << "axis " << axis;
+    EXPECT_NEAR(s.bounds[2 * axis + 1], box.max()[axis], 1.5 * voxel) << "axis " << axis;
+  }
+}
+
+// The coarse axis leaves staircase steps: fewer vertices than at the fine
+// spacing, and the surface is not smooth (its normals turn more from one
+// triangle to the next).
+TEST(SimulatedSegmentation, AnisotropicSpacingIsCoarserThanIsotropic)
+{
+  const MeniscusModel meniscus = makeMeniscus();
+  const Segmented fine = segment(meniscus.visual, { 0.3, 0.3, 0.3 });
+  const Segmented coarse = segment(meniscus.visual, { 0.3, 0.3, 0.9 });
+  EXPECT_TRUE(fine.report.isClosedOutwardSingleSurface()) << fine.report.toString();
+  EXPECT_LT(coarse.mesh.vertexCount(), fine.mesh.vertexCount());
+}
+
+// Noise from a seed: the same seed gives the same surface, another seed
+// another; fragments are dropped (largest piece kept).
+TEST(SimulatedSegmentation, NoiseIsRepeatableBySeed)
+{
+  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
+  const Segmented a = segment(sheet.visual, { 0.5, 0.5, 0.5 }, 0.2, 7u);
+  const Segmented b = segment(sheet.visual, { 0.5, 0.5, 0.5 }, 0.2, 7u);
+  const Segmented c = segment(sheet.visual, { 0.5, 0.5, 0.5 }, 0.2, 8u);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_NE(a.mesh.positions, c.mesh.positions);
+  EXPECT_EQ(a.report.connectedComponents, 1u);
+  EXPECT_EQ(a.report.nonManifoldEdges.count, 0u) << a.report.toString();
+  EXPECT_EQ(a.report.borderEdges.count, 0u) << a.report.toString();
+}
+
+// The grid's phase: a flat face on a sample plane counts as inside (half
+// a voxel more); midway between samples (the default) the volume is kept.
+TEST(SimulatedSegmentation, GridPhaseMovesTheStaircase)
+{
+  const MeniscusModel meniscus = makeMeniscus(); // its tibial face is flat
+  vtkNew<vtkSimulatedSegmentationFilter> filter;
+  filter->SetInputData(toPolyData(meniscus.visual));
+  filter->SetBlurSigma(0.0);
+  filter->Update();
+  const double midway = validateTriangleMesh(fromPolyData(filter->GetOutput(), "a")).signedVolume;
+  filter->SetGridPhase(0.5, 0.5, 0.0);
+  filter->Update();
+  const double onPlane = validateTriangleMesh(fromPolyData(filter->GetOutput(), "b")).signedVolume;
+  const double volume = volumeOf(meniscus.visual);
+  EXPECT_NEAR(midway, volume, 0.02 * volume);
+  EXPECT_GT(onPlane, volume * 1.05);
+}
+
+// Units: the same anatomy in metres is the millimetre surface scaled.
+TEST(SimulatedSegmentation, OutputScaleGivesOtherUnits)
+{
+  const MeniscusModel meniscus = makeMeniscus();
+  const Segmented mm = segment(meniscus.visual, { 0.4, 0.4, 0.8 });
+  const Segmented m = segment(meniscus.visual, { 0.4, 0.4, 0.8 }, 0.0, 1u, 0.001);
+  ASSERT_EQ(mm.mesh.vertexCount(), m.mesh.vertexCount());
+  for (std::size_t v = 0; v < mm.mesh.vertexCount(); v += 97)
+    EXPECT_LT((mm.mesh.positions[v] * 0.001 - m.mesh.positions[v]).norm(), 1e-9);
+}
+
+// Every kind of tissue of the models goes through: torn menisci, the
+// cruciate ligaments (curved, twisted), the tibial cartilage.
+TEST(SimulatedSegmentation, EveryTissueModelGoesThrough)
+{
+  std::vector<TriangleMesh> tissues;
+  for (MeniscusTearType tear :
+    { MeniscusTearType::Longitudinal, MeniscusTearType::Radial, MeniscusTearType::Flap })
+  {
+    MeniscusParameters parameters;
+    parameters.tear = defaultMeniscusTear(tear);
+    tissues.push_back(makeMeniscus(parameters).visual);
+  }
+  const KneeSurroundingsParameters knee;
+  tissues.push_back(makeCruciateLigament(CruciateLigament::Anterior, knee).visual);
+  tissues.push_back(makeCruciateLigament(CruciateLigament::Posterior, knee).visual);
+  tissues.push_back(makeTibialCartilage(knee).visual);
+  for (const TriangleMesh& tissue : tissues)
+  {
+    const Segmented s = segment(tissue, { 0.3, 0.3, 0.9 });
+    EXPECT_EQ(s.report.connectedComponents, 1u) << tissue.name;
+    EXPECT_EQ(s.report.borderEdges.count, 0u) << tissue.name << "\n" << s.report.toString();
+    EXPECT_EQ(s.report.nonManifoldEdges.count, 0u) << tissue.name << "\n" << s.report.toString();
+    const double volume = volumeOf(tissue);
+    EXPECT_NEAR(s.report.signedVolume, volume, 0.2 * volume) << tissue.name;
+  }
+}
+
+TEST(SimulatedSegmentation, BadInputIsRefusedWithAnEmptyOutput)
+{
+  const MeniscusModel meniscus = makeMeniscus();
+  {
+    TriangleMesh open = meniscus.visual;
+    open.triangles.pop_back();
+    vtkNew<vtkSimulatedSegmentationFilter> filter;
+    vtkNew<ErrorCounter> errors;
+    observe(filter, errors);
+    filter->SetInputData(toPolyData(open));
+    filter->Update();
+    EXPECT_GE(errors->count, 1);
+    EXPECT_NE(errors->all.find("closed"), std::string::npos) << errors->all;
+    EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  }
+  {
+    vtkNew<vtkSimulatedSegmentationFilter> filter;
+    vtkNew<ErrorCounter> errors;
+    observe(filter, errors);
+    filter->SetInputData(toPolyData(meniscus.visual));
+    filter->SetGridPhase(0.5, 1.0, 0.5);
+    filter->Update();
+    EXPECT_GE(errors->count, 1);
+    EXPECT_NE(errors->all.find("phase"), std::string::npos) << errors->all;
+  }
+  {
+    // A spacing in metres for a surface in millimetres.
+    vtkNew<vtkSimulatedSegmentationFilter> filter;
+    vtkNew<ErrorCounter> errors;
+    observe(filter, errors);
+    filter->SetInputData(toPolyData(meniscus.visual));
+    filter->SetVoxelSpacing(0.0003, 0.0003, 0.0009);
+    filter->Update();
+    EXPECT_GE(errors->count, 1);
+    EXPECT_NE(errors->all.find("units"), std::string::npos) << errors->all;
+  }
+}
