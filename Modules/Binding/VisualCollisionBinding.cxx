@@ -391,6 +391,100 @@ void checkInputs(const TriangleMesh& visual,
   }
 }
 
+/// The claim of border collision vertex v on the visual rim (5.2.1): its
+/// candidates, closest first. Returns why it has none within reach, or an
+/// empty text.
+std::string claimRimPoint(const TriangleMesh& visual,
+  const TriangleMeshAdjacency& visualAdjacency,
+  const TriangleBvh& visualBvh,
+  int v,
+  const Vector3& origin,
+  const Vector3& outwardSum,
+  double reach,
+  double thinnessFactor,
+  PairingClaim& claim)
+{
+  // The rim point: where the surface is met going outward across
+  // the border in the collision surface's plane (on a thick rim,
+  // the meniscus's outer wall, the closest point could lie on the
+  // upper or lower face instead), else the vertex itself. Around
+  // it, the closest visual vertices (a short list for conflicts)
+  // and the closest points inside the edges around the closest
+  // one: on a rim only a cell thick (the sheets' side walls),
+  // every vertex lies on the upper or the lower edge of the wall,
+  // but an edge point lies half-way, where the rim paths (the
+  // equator between the two sides) belong.
+  Vector3 target = origin;
+  // At the tip of a slit (a tear's lips meeting), the border turns
+  // back on itself: "outward" points along the slit, into the gap
+  // between the lips, and the ray meets a lip far from the tip. The
+  // tip's own rim point is beside it.
+  constexpr double SlitTipOutward = 0.5; // border edges > 150 degrees apart
+  if (outwardSum.norm() > SlitTipOutward)
+  {
+    Vector3 direction = outwardSum.normalized();
+    auto [distance, triangle] = nearestRayHit(visual, origin, direction, &visualBvh, reach);
+    if (triangle >= 0 && visual.triangleNormal(triangle).dot(direction) < 0.0)
+    {
+      // The ray enters the surface: the vertex lies outside it (in
+      // the gap between a tear's lips, the collision lip short of
+      // the visual one), and what it met is the other lip. Its own
+      // wall is behind it.
+      direction = -direction;
+      std::tie(distance, triangle) = nearestRayHit(visual, origin, direction, &visualBvh, reach);
+    }
+    if (triangle >= 0)
+    {
+      target = origin + distance * direction;
+    }
+  }
+  std::vector<std::pair<double, int>> nearest;
+  for (std::size_t w = 0; w < visual.vertexCount(); ++w)
+  {
+    nearest.emplace_back((visual.positions[w] - target).norm(), static_cast<int>(w));
+  }
+  const std::size_t keep = std::min<std::size_t>(16, nearest.size());
+  std::partial_sort(nearest.begin(), nearest.begin() + keep, nearest.end());
+  nearest.resize(keep);
+  for (const auto& [distance, w] : nearest)
+  {
+    claim.candidates.emplace_back(distance, SurfacePoint::atVertex(w));
+  }
+  for (int w : ringNeighbourhood(visual, visualAdjacency, { nearest.front().second }, 1))
+  {
+    for (const int* t = visualAdjacency.vertexTrianglesBegin(w);
+         t != visualAdjacency.vertexTrianglesEnd(w);
+         ++t)
+    {
+      const Triangle& tri = visual.triangles[*t];
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = std::min(tri[k], tri[(k + 1) % 3]);
+        const int b = std::max(tri[k], tri[(k + 1) % 3]);
+        const Vector3 d = visual.positions[b] - visual.positions[a];
+        const double along = d.dot(target - visual.positions[a]) / d.squaredNorm();
+        // Near an end the vertex serves (no sliver triangles).
+        if (along > EdgePointMargin && along < 1.0 - EdgePointMargin)
+        {
+          const Vector3 x = visual.positions[a] + along * d;
+          claim.candidates.emplace_back((x - target).norm(), SurfacePoint::onEdge(a, b, along));
+        }
+      }
+    }
+  }
+  std::stable_sort(claim.candidates.begin(),
+    claim.candidates.end(),
+    [](const auto& x, const auto& y) { return x.first < y.first; });
+  if ((target - origin).norm() + claim.candidates.front().first > reach)
+  {
+    return nameOf(visual, "visual") + " is not thin at border collision vertex " +
+           std::to_string(v) + ": its closest visual vertex is " +
+           std::to_string(claim.candidates.front().first) + " away, more than " +
+           std::to_string(thinnessFactor) + " radii";
+  }
+  return {};
+}
+
 /// 5.2.1: the visual point of every collision vertex and side: a visual
 /// vertex, or for a border collision vertex possibly a point inside a
 /// visual edge (inserted as a vertex before the paths are computed).
@@ -454,86 +548,15 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         {
           return; // one visual vertex for both sides
         }
-        // The rim point: where the surface is met going outward across
-        // the border in the collision surface's plane (on a thick rim,
-        // the meniscus's outer wall, the closest point could lie on the
-        // upper or lower face instead), else the vertex itself. Around
-        // it, the closest visual vertices (a short list for conflicts)
-        // and the closest points inside the edges around the closest
-        // one: on a rim only a cell thick (the sheets' side walls),
-        // every vertex lies on the upper or the lower edge of the wall,
-        // but an edge point lies half-way, where the rim paths (the
-        // equator between the two sides) belong.
-        Vector3 target = origin;
-        // At the tip of a slit (a tear's lips meeting), the border turns
-        // back on itself: "outward" points along the slit, into the gap
-        // between the lips, and the ray meets a lip far from the tip. The
-        // tip's own rim point is beside it.
-        constexpr double SlitTipOutward = 0.5; // border edges > 150 degrees apart
-        if (outward[v].norm() > SlitTipOutward)
-        {
-          Vector3 direction = outward[v].normalized();
-          auto [distance, triangle] = nearestRayHit(visual, origin, direction, &visualBvh, reach);
-          if (triangle >= 0 && visual.triangleNormal(triangle).dot(direction) < 0.0)
-          {
-            // The ray enters the surface: the vertex lies outside it (in
-            // the gap between a tear's lips, the collision lip short of
-            // the visual one), and what it met is the other lip. Its own
-            // wall is behind it.
-            direction = -direction;
-            std::tie(distance, triangle) =
-              nearestRayHit(visual, origin, direction, &visualBvh, reach);
-          }
-          if (triangle >= 0)
-          {
-            target = origin + distance * direction;
-          }
-        }
-        std::vector<std::pair<double, int>> nearest;
-        for (std::size_t w = 0; w < visual.vertexCount(); ++w)
-        {
-          nearest.emplace_back((visual.positions[w] - target).norm(), static_cast<int>(w));
-        }
-        const std::size_t keep = std::min<std::size_t>(16, nearest.size());
-        std::partial_sort(nearest.begin(), nearest.begin() + keep, nearest.end());
-        nearest.resize(keep);
-        for (const auto& [distance, w] : nearest)
-        {
-          claim.candidates.emplace_back(distance, SurfacePoint::atVertex(w));
-        }
-        for (int w : ringNeighbourhood(visual, visualAdjacency, { nearest.front().second }, 1))
-        {
-          for (const int* t = visualAdjacency.vertexTrianglesBegin(w);
-               t != visualAdjacency.vertexTrianglesEnd(w);
-               ++t)
-          {
-            const Triangle& tri = visual.triangles[*t];
-            for (int k = 0; k < 3; ++k)
-            {
-              const int a = std::min(tri[k], tri[(k + 1) % 3]);
-              const int b = std::max(tri[k], tri[(k + 1) % 3]);
-              const Vector3 d = visual.positions[b] - visual.positions[a];
-              const double along = d.dot(target - visual.positions[a]) / d.squaredNorm();
-              // Near an end the vertex serves (no sliver triangles).
-              if (along > EdgePointMargin && along < 1.0 - EdgePointMargin)
-              {
-                const Vector3 x = visual.positions[a] + along * d;
-                claim.candidates.emplace_back(
-                  (x - target).norm(), SurfacePoint::onEdge(a, b, along));
-              }
-            }
-          }
-        }
-        std::stable_sort(claim.candidates.begin(),
-          claim.candidates.end(),
-          [](const auto& x, const auto& y) { return x.first < y.first; });
-        if ((target - origin).norm() + claim.candidates.front().first > reach)
-        {
-          errors[c] = nameOf(visual, "visual") + " is not thin at border collision vertex " +
-                      std::to_string(v) + ": its closest visual vertex is " +
-                      std::to_string(claim.candidates.front().first) + " away, more than " +
-                      std::to_string(settings.thinnessFactor) + " radii";
-        }
+        errors[c] = claimRimPoint(visual,
+          visualAdjacency,
+          visualBvh,
+          v,
+          origin,
+          outward[v],
+          reach,
+          settings.thinnessFactor,
+          claim);
         return;
       }
       const Vector3 direction = (slot == 0 ? 1.0 : -1.0) * topology.vertexNormals[v];
@@ -1041,6 +1064,238 @@ std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
   return side;
 }
 
+/// The path of each collision edge and side (a border edge's one path,
+/// side 0, serves both sides).
+struct PathsOfEdges
+{
+  std::vector<std::array<int, 3>> byEdge; ///< path index per side + 1
+  int operator()(int edge, int side) const
+  {
+    const auto& candidates = byEdge[edge];
+    return candidates[1] >= 0 ? candidates[1] : candidates[side + 1];
+  }
+};
+
+/// The regions (5.2.3): flood fill over the re-meshed visual surface with
+/// path edges as barriers, each collision triangle and side seeded beside
+/// its own paths. Sets binding.triangleRegion and triangleSide; returns
+/// the triangles of each region (index 2 t + (side < 0)).
+std::vector<std::vector<int>> floodRegions(VisualCollisionBinding& binding,
+  const TriangleMesh& collision,
+  const CollisionTopology& topology,
+  const PathsOfEdges& pathFor)
+{
+  const TriangleMesh& mesh = binding.visual;
+  const TriangleMeshAdjacency adjacency(mesh);
+  std::vector<int> pathUses(adjacency.edgeCount(), 0);
+  for (const BindingPath& path : binding.paths)
+  {
+    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+    {
+      const int e = adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]);
+      if (e < 0)
+      {
+        throw InvalidInputError("visual-collision binding: re-meshing lost a path edge");
+      }
+      ++pathUses[e];
+    }
+  }
+  const std::size_t triangleCount = mesh.triangles.size();
+  binding.triangleRegion.assign(triangleCount, -1);
+  binding.triangleSide.assign(triangleCount, 0);
+  std::vector<int> regionLabel(triangleCount, -1); // 2 t + (side < 0)
+  std::vector<std::vector<int>> regionTriangles(2 * collision.triangles.size());
+  auto triangleLeftOf = [&](int u, int w) -> int
+  {
+    // The triangle in which u -> w runs counter-clockwise.
+    const int e = adjacency.findEdge(u, w);
+    for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
+    {
+      const Triangle& tri = mesh.triangles[*t];
+      for (int k = 0; k < 3; ++k)
+      {
+        if (tri[k] == u && tri[(k + 1) % 3] == w)
+        {
+          return *t;
+        }
+      }
+    }
+    return -1;
+  };
+  std::vector<int> stack;
+  for (std::size_t t = 0; t < collision.triangles.size(); ++t)
+  {
+    const Triangle& ct = collision.triangles[t];
+    for (int side : { 1, -1 })
+    {
+      const int label = 2 * static_cast<int>(t) + (side < 0 ? 1 : 0);
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = ct[k];
+        const int b = ct[(k + 1) % 3];
+        const int edge = binding.collisionEdgeIndex(a, b);
+        const BindingPath& path = binding.paths[pathFor(edge, side)];
+        const bool forward = topology.edges[edge][0] == a;
+        // A segment of this path that no other path uses.
+        int seed = -1;
+        const auto& pv = path.visualVertices;
+        for (std::size_t i = 1; i < pv.size() && seed < 0; ++i)
+        {
+          int u = pv[i - 1];
+          int w = pv[i];
+          if (!forward)
+          {
+            std::swap(u, w);
+          }
+          if (pathUses[adjacency.findEdge(u, w)] == 1)
+          {
+            seed = side > 0 ? triangleLeftOf(u, w) : triangleLeftOf(w, u);
+          }
+        }
+        if (seed < 0)
+        {
+          throw InvalidInputError("visual-collision binding: every segment of the " +
+                                  std::string(side > 0 ? "positive" : "negative") +
+                                  " path of collision edge (" + std::to_string(a) + ", " +
+                                  std::to_string(b) +
+                                  ") is shared with another path; the region of collision "
+                                  "triangle " +
+                                  std::to_string(t) + " has no width there");
+        }
+        if (regionLabel[seed] == label)
+        {
+          continue;
+        }
+        if (regionLabel[seed] >= 0)
+        {
+          throw InvalidInputError(
+            "visual-collision binding: the regions of collision triangles " + std::to_string(t) +
+            " and " + std::to_string(regionLabel[seed] / 2) +
+            " are not separated by their paths (paths cross or the collision mesh folds)");
+        }
+        if (!regionTriangles[label].empty())
+        {
+          throw InvalidInputError("visual-collision binding: the " +
+                                  std::string(side > 0 ? "positive" : "negative") +
+                                  " region of collision triangle " + std::to_string(t) +
+                                  " falls apart into several pieces (its paths cross others)");
+        }
+        regionLabel[seed] = label;
+        stack.assign(1, seed);
+        while (!stack.empty())
+        {
+          const int current = stack.back();
+          stack.pop_back();
+          regionTriangles[label].push_back(current);
+          const auto& edges = adjacency.triangleEdges(current);
+          for (int j = 0; j < 3; ++j)
+          {
+            if (pathUses[edges[j]] > 0)
+            {
+              continue;
+            }
+            const int next = adjacency.neighbourAcross(current, j);
+            if (next >= 0 && regionLabel[next] < 0)
+            {
+              regionLabel[next] = label;
+              stack.push_back(next);
+            }
+            else if (next >= 0 && regionLabel[next] != label)
+            {
+              throw InvalidInputError("visual-collision binding: the regions of collision "
+                                      "triangles " +
+                                      std::to_string(t) + " and " +
+                                      std::to_string(regionLabel[next] / 2) + " touch");
+            }
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t t = 0; t < triangleCount; ++t)
+  {
+    if (regionLabel[t] < 0)
+    {
+      throw InvalidInputError("visual-collision binding: visual triangle " + std::to_string(t) +
+                              " (at vertex " + std::to_string(mesh.triangles[t][0]) +
+                              ") is enclosed by no collision triangle's paths");
+    }
+    binding.triangleRegion[t] = regionLabel[t] / 2;
+    binding.triangleSide[t] = static_cast<std::int8_t>(regionLabel[t] % 2 == 0 ? 1 : -1);
+  }
+  return regionTriangles;
+}
+
+/// Vertex bindings (5.2.4): paired vertices bound to their collision
+/// vertex, path vertices to their edge by accumulated length, the rest to
+/// their region's triangle (parameters still to solve). Returns each
+/// path's accumulated-length fractions from its edge's first vertex.
+std::vector<std::vector<double>> bindVisualVertices(VisualCollisionBinding& binding)
+{
+  const TriangleMesh& mesh = binding.visual;
+  const std::size_t triangleCount = mesh.triangles.size();
+  binding.vertices.assign(mesh.positions.size(), VisualVertexBinding());
+  std::vector<char> assigned(mesh.positions.size(), 0);
+  for (std::size_t v = 0; v < binding.pairedVisualVertices.size(); ++v)
+  {
+    const auto& pair = binding.pairedVisualVertices[v];
+    for (int slot = 0; slot < 2; ++slot)
+    {
+      VisualVertexBinding& b = binding.vertices[pair[slot]];
+      b.kind = BindingKind::CollisionVertex;
+      b.element = static_cast<int>(v);
+      b.side = pair[0] == pair[1] ? 0 : (slot == 0 ? 1 : -1);
+      b.parameters = Vector3(1.0, 0.0, 0.0);
+      assigned[pair[slot]] = 1;
+    }
+  }
+  // Accumulated length along each path (fraction from the edge's first vertex).
+  std::vector<std::vector<double>> pathFractions(binding.paths.size());
+  for (std::size_t k = 0; k < binding.paths.size(); ++k)
+  {
+    const BindingPath& path = binding.paths[k];
+    auto& fractions = pathFractions[k];
+    fractions.assign(path.visualVertices.size(), 0.0);
+    double accumulated = 0.0;
+    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+    {
+      accumulated +=
+        (mesh.positions[path.visualVertices[i]] - mesh.positions[path.visualVertices[i - 1]])
+          .norm();
+      fractions[i] = path.length > 0.0 ? accumulated / path.length : 0.0;
+    }
+    for (std::size_t i = 1; i + 1 < path.visualVertices.size(); ++i)
+    {
+      const int v = path.visualVertices[i];
+      if (assigned[v])
+      {
+        continue; // shared with an earlier path: keeps that binding
+      }
+      assigned[v] = 1;
+      VisualVertexBinding& b = binding.vertices[v];
+      b.kind = BindingKind::CollisionEdge;
+      b.element = path.collisionEdge;
+      b.side = path.side;
+      b.parameters = Vector3(1.0 - fractions[i], fractions[i], 0.0);
+    }
+  }
+  for (std::size_t t = 0; t < triangleCount; ++t)
+  {
+    for (int v : mesh.triangles[t])
+    {
+      if (!assigned[v])
+      {
+        assigned[v] = 1;
+        VisualVertexBinding& b = binding.vertices[v];
+        b.kind = BindingKind::CollisionTriangle;
+        b.element = binding.triangleRegion[t];
+        b.side = binding.triangleSide[t];
+      }
+    }
+  }
+  return pathFractions;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -1271,216 +1526,18 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   // Flood fill: path edges are barriers; each collision triangle and side
   // is seeded beside its own paths.
   report(progress, 0.8, "finding the regions of the collision triangles");
-  const TriangleMeshAdjacency adjacency(mesh);
-  std::vector<int> pathUses(adjacency.edgeCount(), 0);
-  for (const BindingPath& path : binding.paths)
-  {
-    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
-    {
-      const int e = adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]);
-      if (e < 0)
-      {
-        throw InvalidInputError("visual-collision binding: re-meshing lost a path edge");
-      }
-      ++pathUses[e];
-    }
-  }
-  // Paths of each collision edge and side (border edges: side 0 for both).
-  std::vector<std::array<int, 3>> pathOfEdge(topology.edges.size(), { { -1, -1, -1 } });
+  PathsOfEdges pathFor;
+  pathFor.byEdge.assign(topology.edges.size(), { { -1, -1, -1 } });
   for (std::size_t k = 0; k < binding.paths.size(); ++k)
   {
-    pathOfEdge[binding.paths[k].collisionEdge][binding.paths[k].side + 1] = static_cast<int>(k);
+    pathFor.byEdge[binding.paths[k].collisionEdge][binding.paths[k].side + 1] = static_cast<int>(k);
   }
-  auto pathFor = [&](int edge, int side)
-  {
-    const auto& candidates = pathOfEdge[edge];
-    return candidates[1] >= 0 ? candidates[1] : candidates[side + 1];
-  };
-  const std::size_t triangleCount = mesh.triangles.size();
-  binding.triangleRegion.assign(triangleCount, -1);
-  binding.triangleSide.assign(triangleCount, 0);
-  std::vector<int> regionLabel(triangleCount, -1); // 2 t + (side < 0)
-  std::vector<std::vector<int>> regionTriangles(2 * collision.triangles.size());
-  auto triangleLeftOf = [&](int u, int w) -> int
-  {
-    // The triangle in which u -> w runs counter-clockwise.
-    const int e = adjacency.findEdge(u, w);
-    for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
-    {
-      const Triangle& tri = mesh.triangles[*t];
-      for (int k = 0; k < 3; ++k)
-      {
-        if (tri[k] == u && tri[(k + 1) % 3] == w)
-        {
-          return *t;
-        }
-      }
-    }
-    return -1;
-  };
-  std::vector<int> stack;
-  for (std::size_t t = 0; t < collision.triangles.size(); ++t)
-  {
-    const Triangle& ct = collision.triangles[t];
-    for (int side : { 1, -1 })
-    {
-      const int label = 2 * static_cast<int>(t) + (side < 0 ? 1 : 0);
-      for (int k = 0; k < 3; ++k)
-      {
-        const int a = ct[k];
-        const int b = ct[(k + 1) % 3];
-        const int edge = binding.collisionEdgeIndex(a, b);
-        const BindingPath& path = binding.paths[pathFor(edge, side)];
-        const bool forward = topology.edges[edge][0] == a;
-        // A segment of this path that no other path uses.
-        int seed = -1;
-        const auto& pv = path.visualVertices;
-        for (std::size_t i = 1; i < pv.size() && seed < 0; ++i)
-        {
-          int u = pv[i - 1];
-          int w = pv[i];
-          if (!forward)
-          {
-            std::swap(u, w);
-          }
-          if (pathUses[adjacency.findEdge(u, w)] == 1)
-          {
-            seed = side > 0 ? triangleLeftOf(u, w) : triangleLeftOf(w, u);
-          }
-        }
-        if (seed < 0)
-        {
-          throw InvalidInputError("visual-collision binding: every segment of the " +
-                                  std::string(side > 0 ? "positive" : "negative") +
-                                  " path of collision edge (" + std::to_string(a) + ", " +
-                                  std::to_string(b) +
-                                  ") is shared with another path; the region of collision "
-                                  "triangle " +
-                                  std::to_string(t) + " has no width there");
-        }
-        if (regionLabel[seed] == label)
-        {
-          continue;
-        }
-        if (regionLabel[seed] >= 0)
-        {
-          throw InvalidInputError(
-            "visual-collision binding: the regions of collision triangles " + std::to_string(t) +
-            " and " + std::to_string(regionLabel[seed] / 2) +
-            " are not separated by their paths (paths cross or the collision mesh folds)");
-        }
-        if (!regionTriangles[label].empty())
-        {
-          throw InvalidInputError("visual-collision binding: the " +
-                                  std::string(side > 0 ? "positive" : "negative") +
-                                  " region of collision triangle " + std::to_string(t) +
-                                  " falls apart into several pieces (its paths cross others)");
-        }
-        regionLabel[seed] = label;
-        stack.assign(1, seed);
-        while (!stack.empty())
-        {
-          const int current = stack.back();
-          stack.pop_back();
-          regionTriangles[label].push_back(current);
-          const auto& edges = adjacency.triangleEdges(current);
-          for (int j = 0; j < 3; ++j)
-          {
-            if (pathUses[edges[j]] > 0)
-            {
-              continue;
-            }
-            const int next = adjacency.neighbourAcross(current, j);
-            if (next >= 0 && regionLabel[next] < 0)
-            {
-              regionLabel[next] = label;
-              stack.push_back(next);
-            }
-            else if (next >= 0 && regionLabel[next] != label)
-            {
-              throw InvalidInputError("visual-collision binding: the regions of collision "
-                                      "triangles " +
-                                      std::to_string(t) + " and " +
-                                      std::to_string(regionLabel[next] / 2) + " touch");
-            }
-          }
-        }
-      }
-    }
-  }
-  for (std::size_t t = 0; t < triangleCount; ++t)
-  {
-    if (regionLabel[t] < 0)
-    {
-      throw InvalidInputError("visual-collision binding: visual triangle " + std::to_string(t) +
-                              " (at vertex " + std::to_string(mesh.triangles[t][0]) +
-                              ") is enclosed by no collision triangle's paths");
-    }
-    binding.triangleRegion[t] = regionLabel[t] / 2;
-    binding.triangleSide[t] = static_cast<std::int8_t>(regionLabel[t] % 2 == 0 ? 1 : -1);
-  }
+  const std::vector<std::vector<int>> regionTriangles =
+    floodRegions(binding, collision, topology, pathFor);
 
-  // Vertex bindings: paired vertices, then path vertices, then the rest.
   report(progress, 0.85, "assigning local parameters");
-  binding.vertices.assign(mesh.positions.size(), VisualVertexBinding());
-  std::vector<char> assigned(mesh.positions.size(), 0);
-  for (std::size_t v = 0; v < binding.pairedVisualVertices.size(); ++v)
-  {
-    const auto& pair = binding.pairedVisualVertices[v];
-    for (int slot = 0; slot < 2; ++slot)
-    {
-      VisualVertexBinding& b = binding.vertices[pair[slot]];
-      b.kind = BindingKind::CollisionVertex;
-      b.element = static_cast<int>(v);
-      b.side = pair[0] == pair[1] ? 0 : (slot == 0 ? 1 : -1);
-      b.parameters = Vector3(1.0, 0.0, 0.0);
-      assigned[pair[slot]] = 1;
-    }
-  }
-  // Accumulated length along each path (fraction from the edge's first vertex).
-  std::vector<std::vector<double>> pathFractions(binding.paths.size());
-  for (std::size_t k = 0; k < binding.paths.size(); ++k)
-  {
-    const BindingPath& path = binding.paths[k];
-    auto& fractions = pathFractions[k];
-    fractions.assign(path.visualVertices.size(), 0.0);
-    double accumulated = 0.0;
-    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
-    {
-      accumulated +=
-        (mesh.positions[path.visualVertices[i]] - mesh.positions[path.visualVertices[i - 1]])
-          .norm();
-      fractions[i] = path.length > 0.0 ? accumulated / path.length : 0.0;
-    }
-    for (std::size_t i = 1; i + 1 < path.visualVertices.size(); ++i)
-    {
-      const int v = path.visualVertices[i];
-      if (assigned[v])
-      {
-        continue; // shared with an earlier path: keeps that binding
-      }
-      assigned[v] = 1;
-      VisualVertexBinding& b = binding.vertices[v];
-      b.kind = BindingKind::CollisionEdge;
-      b.element = path.collisionEdge;
-      b.side = path.side;
-      b.parameters = Vector3(1.0 - fractions[i], fractions[i], 0.0);
-    }
-  }
-  for (std::size_t t = 0; t < triangleCount; ++t)
-  {
-    for (int v : mesh.triangles[t])
-    {
-      if (!assigned[v])
-      {
-        assigned[v] = 1;
-        VisualVertexBinding& b = binding.vertices[v];
-        b.kind = BindingKind::CollisionTriangle;
-        b.element = binding.triangleRegion[t];
-        b.side = binding.triangleSide[t];
-      }
-    }
-  }
+  const std::vector<std::vector<double>> pathFractions = bindVisualVertices(binding);
+
   // Mean value coordinates per region, the boundary fixed on the collision
   // triangle (laid out in its own plane).
   RegionParameterisation parameterisation(mesh.positions.size());
