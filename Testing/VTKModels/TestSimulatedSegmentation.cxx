@@ -2,10 +2,13 @@
 // (procedural tissues voxelized, blurred, iso-surfaced, in odd units).
 #include "vtkSimulatedSegmentationFilter.h"
 
+#include "BindingInvariants.h"
+#include "CollisionMeshGeneration.h"
 #include "KneeModels.h"
 #include "MeniscusModel.h"
 #include "MeshValidation.h"
 #include "ThinSheetModel.h"
+#include "VisualCollisionBinding.h"
 #include "vtkThinTissueConversion.h"
 
 #include "ThinTissueVtkErrorObserver.h"
@@ -203,5 +206,28 @@ TEST(SimulatedSegmentation, BadInputIsRefusedWithAnEmptyOutput)
     filter->Update();
     EXPECT_GE(errors->count, 1);
     EXPECT_NE(errors->all.find("units"), std::string::npos) << errors->all;
+  }
+}
+
+// Issue 14's first failure, reproduced by the test bed and fixed: at 0.9 mm
+// slices the staircase outline put border collision vertices beside the
+// tissue ("finds no surface above and below it"). Now the meniscus and the
+// cartilage prepare and bind (the thesis's 105 collision vertices).
+TEST(SimulatedSegmentation, SegmentedMeniscusAndCartilagePrepareAndBind)
+{
+  const KneeSurroundingsParameters knee;
+  for (const TriangleMesh& tissue : { makeMeniscus().visual, makeTibialCartilage(knee).visual })
+  {
+    SCOPED_TRACE(tissue.name);
+    const Segmented s = segment(tissue, { 0.3, 0.3, 0.9 });
+    CollisionMeshSettings settings;
+    settings.vertexCount = 105;
+    const GeneratedCollisionMesh generated = makeCollisionMidSurface(s.mesh, settings);
+    EXPECT_EQ(generated.mesh.vertexCount(), 105u);
+    for (double r : generated.mesh.pointAttributes.get("Radius").values)
+      EXPECT_GT(r, 0.0);
+    EXPECT_LE(generated.hausdorffDistance, 0.5 * generated.largestThickness);
+    const VisualCollisionBinding binding = bindVisualToCollision(s.mesh, generated.mesh);
+    thintissue::testing::checkBinding(s.mesh, generated.mesh, binding);
   }
 }
