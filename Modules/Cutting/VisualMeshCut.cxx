@@ -259,6 +259,46 @@ std::vector<Vector2> regionPlane(const std::vector<Vector3>& parameters,
            : tutteEmbedding(parameters, triangles, isInner, frame);
 }
 
+/// A point where a traced cut crosses its region, at parameter s along it.
+struct CutNode
+{
+  double s;
+  SurfacePoint point;
+};
+
+/// The traced path: a walk from node 0 (the cut's start) to node 1 (its
+/// end) through the links the crossed triangles make. A fold in the
+/// region's parameterisation (rare) makes the order along the line differ
+/// from the order through the mesh, and the mesh order is the one that
+/// makes a path. False if the walk loses its way.
+bool walkCut(const std::vector<CutNode>& nodes,
+  std::unordered_map<int, std::vector<int>>& links,
+  SurfacePath& traced)
+{
+  traced.points.clear();
+  std::vector<char> visited(nodes.size(), 0);
+  int current = 0;
+  visited[0] = 1;
+  traced.points.push_back(nodes[0].point);
+  while (current != 1)
+  {
+    int next = -1;
+    for (int candidate : links[current])
+    {
+      if (visited[candidate] || next == 1)
+        continue;
+      if (next < 0 || candidate == 1 || nodes[candidate].s < nodes[next].s)
+        next = candidate;
+    }
+    if (next < 0)
+      return false;
+    visited[next] = 1;
+    traced.points.push_back(nodes[next].point);
+    current = next;
+  }
+  return true;
+}
+
 int cornerIndex(const Vector3& barycentric)
 {
   for (int k = 0; k < 3; ++k)
@@ -788,12 +828,7 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
   const double tolerance = OnLineTolerance * scale;
   // Crossing points: nodes 0 and 1 are the cut's ends, then vertices within
   // a round-off of the line and points inside edges whose ends lie apart.
-  struct Node
-  {
-    double s;
-    SurfacePoint point;
-  };
-  std::vector<Node> nodes{ { 0.0, start }, { 1.0, end } };
+  std::vector<CutNode> nodes{ { 0.0, start }, { 1.0, end } };
   const std::size_t count = region.vertices.size();
   std::vector<double> signedDistance(count);
   std::vector<int> vertexNode(count, -1); // per local vertex
@@ -888,36 +923,65 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
     links[*first].push_back(*last);
     links[*last].push_back(*first);
   }
-  // Walk from one end to the other through the triangles: a fold in the
-  // region's parameterisation (rare) makes the order along the line differ
-  // from the order through the mesh, and the mesh order is the one that
-  // makes a path.
-  SurfacePath& traced = crossing.path;
-  traced.points.clear();
-  std::vector<char> visited(nodes.size(), 0);
-  int current = 0;
-  visited[0] = 1;
-  traced.points.push_back(nodes[0].point);
-  while (current != 1)
+  if (!walkCut(nodes, links, crossing.path))
   {
-    int next = -1;
-    for (int candidate : links[current])
-    {
-      if (visited[candidate] || next == 1)
-        continue;
-      if (next < 0 || candidate == 1 || nodes[candidate].s < nodes[next].s)
-        next = candidate;
-    }
-    if (next < 0)
-    {
-      throw Error("visual cut of '" + Mesh.name + "': the cut from collision vertex " +
-                  std::to_string(crossing.ends[0]) + " to " + std::to_string(crossing.ends[1]) +
-                  " loses its way in the visual region on side " + std::to_string(region.side));
-    }
-    visited[next] = 1;
-    traced.points.push_back(nodes[next].point);
-    current = next;
+    throw Error("visual cut of '" + Mesh.name + "': the cut from collision vertex " +
+                std::to_string(crossing.ends[0]) + " to " + std::to_string(crossing.ends[1]) +
+                " loses its way in the visual region on side " + std::to_string(region.side));
   }
+}
+
+// The triangles of region r a traced path touches (to re-mesh) go to
+// `triangles` (with r in `regionOfLocal`); the others stay as they are.
+void CuttableVisualMesh::selectTouchedTriangles(int r,
+  CutContext& context,
+  std::vector<int>& triangles,
+  std::vector<int>& regionOfLocal)
+{
+  RegionCut& region = context.regions[r];
+  // Per local vertex: 1 if a traced path passes it, 2 if a path crosses
+  // an edge from it (then the edge is looked up).
+  context.activate(region);
+  std::vector<char> mark(region.vertices.size(), 0);
+  std::vector<std::uint64_t> edgePoints;
+  for (const CrossingPath& crossing : region.crossings)
+    for (const SurfacePoint& point : crossing.path.points)
+    {
+      if (point.isVertex())
+        mark[context.local(point.vertex)] |= 1;
+      else
+      {
+        mark[context.local(point.edgeStart)] |= 2;
+        mark[context.local(point.edgeEnd)] |= 2;
+        edgePoints.push_back(edgeKey(point.edgeStart, point.edgeEnd));
+      }
+    }
+  std::sort(edgePoints.begin(), edgePoints.end());
+  auto crossed = [&](int a, int b, char ma, char mb)
+  {
+    return (ma & 2) && (mb & 2) &&
+           std::binary_search(edgePoints.begin(), edgePoints.end(), edgeKey(a, b));
+  };
+  for (int t : region.triangles)
+  {
+    const Triangle& tri = Mesh.triangles[t];
+    const char m[3] = {
+      mark[context.local(tri[0])], mark[context.local(tri[1])], mark[context.local(tri[2])]
+    };
+    bool touched = (m[0] | m[1] | m[2]) & 1;
+    for (int k = 0; k < 3 && !touched; ++k)
+      touched = crossed(tri[k], tri[(k + 1) % 3], m[k], m[(k + 1) % 3]);
+    if (touched)
+    {
+      triangles.push_back(t);
+      regionOfLocal.push_back(r);
+    }
+    else
+    {
+      region.newTriangles.push_back(t);
+    }
+  }
+  context.deactivate(region);
 }
 
 //------------------------------------------------------------------------------
@@ -930,52 +994,7 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
   std::vector<int> triangles;
   std::vector<int> regionOfLocal;
   for (std::size_t r = 0; r < context.regions.size(); ++r)
-  {
-    RegionCut& region = context.regions[r];
-    // Per local vertex: 1 if a traced path passes it, 2 if a path crosses
-    // an edge from it (then the edge is looked up).
-    context.activate(region);
-    std::vector<char> mark(region.vertices.size(), 0);
-    std::vector<std::uint64_t> edgePoints;
-    for (const CrossingPath& crossing : region.crossings)
-      for (const SurfacePoint& point : crossing.path.points)
-      {
-        if (point.isVertex())
-          mark[context.local(point.vertex)] |= 1;
-        else
-        {
-          mark[context.local(point.edgeStart)] |= 2;
-          mark[context.local(point.edgeEnd)] |= 2;
-          edgePoints.push_back(edgeKey(point.edgeStart, point.edgeEnd));
-        }
-      }
-    std::sort(edgePoints.begin(), edgePoints.end());
-    auto crossed = [&](int a, int b, char ma, char mb)
-    {
-      return (ma & 2) && (mb & 2) &&
-             std::binary_search(edgePoints.begin(), edgePoints.end(), edgeKey(a, b));
-    };
-    for (int t : region.triangles)
-    {
-      const Triangle& tri = Mesh.triangles[t];
-      const char m[3] = {
-        mark[context.local(tri[0])], mark[context.local(tri[1])], mark[context.local(tri[2])]
-      };
-      bool touched = (m[0] | m[1] | m[2]) & 1;
-      for (int k = 0; k < 3 && !touched; ++k)
-        touched = crossed(tri[k], tri[(k + 1) % 3], m[k], m[(k + 1) % 3]);
-      if (touched)
-      {
-        triangles.push_back(t);
-        regionOfLocal.push_back(static_cast<int>(r));
-      }
-      else
-      {
-        region.newTriangles.push_back(t);
-      }
-    }
-    context.deactivate(region);
-  }
+    selectTouchedTriangles(static_cast<int>(r), context, triangles, regionOfLocal);
   if (triangles.empty())
     return;
   LocalMesh local = extractTriangles(Mesh, triangles);

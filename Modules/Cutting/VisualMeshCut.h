@@ -166,6 +166,10 @@ private:
   void splitEdgePaths(CutContext& context);
   void traceRegionCuts(CutContext& context);
   void remeshRegions(CutContext& context);
+  void selectTouchedTriangles(int r,
+    CutContext& context,
+    std::vector<int>& triangles,
+    std::vector<int>& regionOfLocal);
   void rebindSplitRegions(CutContext& context);
   std::vector<char> bindCrossingVertices(RegionCut& region, CutContext& context);
   void assignPieces(RegionCut& region, const std::vector<char>& onCut, CutContext& context);
