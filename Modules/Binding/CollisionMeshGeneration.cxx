@@ -687,19 +687,23 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
     }
     // On a rough outline (a segmentation's staircase) a point moved in by
     // its neighbours' inward direction, or resampled across a concave jag,
-    // can land beside the tissue: it goes to the nearest point that has
-    // tissue above and below (rings of growing radius around it).
+    // can land beside the tissue or on a sliver of it: it goes to the
+    // nearest point where the tissue is at least a twentieth of its largest
+    // thickness (rings of growing radius around it), so that its sphere
+    // has a radius to reach the rim with.
+    const double thinnest = 0.025 * result.largestThickness;
     for (Vector2& q : border)
     {
       double middle = 0.0;
-      for (double radius = 1e-3 * extent; halfThickness(q, middle) <= 0.0 && radius < 0.1 * extent;
+      for (double radius = 1e-3 * extent;
+           halfThickness(q, middle) < thinnest && radius < 0.1 * extent;
            radius *= 1.5)
       {
         for (int k = 0; k < 16; ++k)
         {
           const double angle = 2.0 * M_PI * k / 16.0;
           const Vector2 candidate = q + radius * Vector2(std::cos(angle), std::sin(angle));
-          if (halfThickness(candidate, middle) > 0.0)
+          if (halfThickness(candidate, middle) >= thinnest)
           {
             q = candidate;
             break;

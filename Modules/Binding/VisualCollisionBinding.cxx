@@ -475,12 +475,15 @@ std::string claimRimPoint(const TriangleMesh& visual,
   std::stable_sort(claim.candidates.begin(),
     claim.candidates.end(),
     [](const auto& x, const auto& y) { return x.first < y.first; });
-  if ((target - origin).norm() + claim.candidates.front().first > reach)
+  const double away = (target - origin).norm() + claim.candidates.front().first;
+  if (away > reach)
   {
     return nameOf(visual, "visual") + " is not thin at border collision vertex " +
-           std::to_string(v) + ": its closest visual vertex is " +
-           std::to_string(claim.candidates.front().first) + " away, more than " +
-           std::to_string(thinnessFactor) + " radii";
+           std::to_string(v) + ": its rim point is " + std::to_string(away) +
+           " away (outward across the border " + std::to_string((target - origin).norm()) +
+           ", then " + std::to_string(claim.candidates.front().first) +
+           " to the closest visual vertex), more than " + std::to_string(thinnessFactor) +
+           " radii of " + std::to_string(reach / thinnessFactor);
   }
   return {};
 }
