@@ -558,6 +558,173 @@ int borderVertexCountFor(int vertices)
   return std::clamp(static_cast<int>(std::lround(3.8 * std::sqrt(vertices))), 4, vertices - 3);
 }
 
+/// Half the thickness along the axis at q (and the middle there), or -1
+/// where the line misses the surface.
+double halfThicknessAt(const ProjectedSurface& surface, const Vector2& q, double& middle)
+{
+  double bottom = 0.0;
+  double top = 0.0;
+  if (!surface.crossing(q, bottom, top))
+  {
+    return -1.0;
+  }
+  middle = 0.5 * (bottom + top);
+  return 0.5 * (top - bottom);
+}
+
+/// The border of the collision mid-surface: the outline resampled to
+/// `borderCount` points and moved in until the local half thickness
+/// reaches it, so that the border spheres reach the rim.
+std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
+  const std::vector<Vector2>& silhouette,
+  int borderCount,
+  double extent,
+  double largestThickness)
+{
+  std::vector<Vector2> border = resample(silhouette, borderCount);
+  if (static_cast<int>(border.size()) != borderCount)
+  {
+    border = resampleEvenly(silhouette, borderCount);
+  }
+  {
+    std::vector<Vector2> moved(border.size());
+    for (std::size_t i = 0; i < border.size(); ++i)
+    {
+      const Vector2& previous = border[(i + border.size() - 1) % border.size()];
+      const Vector2& next = border[(i + 1) % border.size()];
+      const Vector2 along = (next - previous).normalized();
+      const Vector2 inward(-along.y(), along.x());
+      double depth = 1e-3 * extent;
+      double middle = 0.0;
+      for (int iteration = 0; iteration < 12; ++iteration)
+      {
+        const double half = halfThicknessAt(surface, border[i] + depth * inward, middle);
+        depth = half > 0.0 ? std::min(half, 0.25 * extent) : 1.5 * depth;
+      }
+      moved[i] = border[i] + depth * inward;
+    }
+    // Moving in gathers points on concave stretches: spread them evenly
+    // again along the moved outline (its corners kept).
+    border = resample(moved, borderCount);
+    if (static_cast<int>(border.size()) != borderCount)
+    {
+      border = resampleEvenly(moved, borderCount);
+    }
+    // On a rough outline (a segmentation's staircase) a point moved in by
+    // its neighbours' inward direction, or resampled across a concave jag,
+    // can land beside the tissue or on a sliver of it: it goes to the
+    // nearest point where the tissue is at least a twentieth of its largest
+    // thickness (rings of growing radius around it), so that its sphere
+    // has a radius to reach the rim with.
+    const double thinnest = 0.025 * largestThickness;
+    for (Vector2& q : border)
+    {
+      double middle = 0.0;
+      for (double radius = 1e-3 * extent;
+           halfThicknessAt(surface, q, middle) < thinnest && radius < 0.1 * extent;
+           radius *= 1.5)
+      {
+        for (int k = 0; k < 16; ++k)
+        {
+          const double angle = 2.0 * M_PI * k / 16.0;
+          const Vector2 candidate = q + radius * Vector2(std::cos(angle), std::sin(angle));
+          if (halfThicknessAt(surface, candidate, middle) >= thinnest)
+          {
+            q = candidate;
+            break;
+          }
+        }
+      }
+    }
+  }
+  return border;
+}
+
+/// At least `interiorCount` lattice points inside the border (the largest
+/// spacing that gives them, by bisection), kept off the border; fewer if
+/// none fits.
+std::vector<Vector2> interiorLattice(const std::vector<Vector2>& border,
+  int interiorCount,
+  double extent)
+{
+  double perimeter = 0.0;
+  for (std::size_t i = 0; i < border.size(); ++i)
+  {
+    perimeter += (border[(i + 1) % border.size()] - border[i]).norm();
+  }
+  const double borderSpacing = perimeter / static_cast<double>(border.size());
+  double small = 1e-3 * extent;
+  double large = extent;
+  std::vector<Vector2> interior;
+  for (int iteration = 0; iteration < 60; ++iteration)
+  {
+    const double h = std::sqrt(small * large);
+    std::vector<Vector2> points = latticeInside(border, h, 0.45 * std::min(h, borderSpacing));
+    if (static_cast<int>(points.size()) >= interiorCount)
+    {
+      small = h;
+      interior = std::move(points);
+    }
+    else
+    {
+      large = h;
+    }
+    if (large / small < 1.0 + 1e-6)
+    {
+      break;
+    }
+  }
+  return interior;
+}
+
+/// Constrained Delaunay triangulation (CGAL) of `points`, whose first
+/// `borderCount` are the border loop in order, keeping the triangles
+/// inside it, with chords between border vertices flipped to inner ones.
+std::vector<Triangle> triangulateInside(const std::vector<Vector2>& points,
+  std::size_t borderCount,
+  const std::string& name)
+{
+  const std::vector<Vector2> border(points.begin(), points.begin() + borderCount);
+  Triangulation triangulation;
+  std::vector<Triangulation::Vertex_handle> handles;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    auto handle = triangulation.insert(Kernel::Point_2(points[i].x(), points[i].y()));
+    handle->info() = static_cast<int>(i);
+    handles.push_back(handle);
+  }
+  for (std::size_t i = 0; i < borderCount; ++i)
+  {
+    triangulation.insert_constraint(handles[i], handles[(i + 1) % borderCount]);
+  }
+  std::vector<Triangle> triangles;
+  for (auto face = triangulation.finite_faces_begin(); face != triangulation.finite_faces_end();
+       ++face)
+  {
+    Triangle t{};
+    Vector2 centroid = Vector2::Zero();
+    for (int k = 0; k < 3; ++k)
+    {
+      t[k] = face->vertex(k)->info();
+      if (t[k] < 0 || t[k] >= static_cast<int>(points.size()))
+      {
+        throw InvalidInputError(name + ": its outline crosses itself");
+      }
+      centroid += points[t[k]] / 3.0;
+    }
+    if (insidePolygon(border, centroid))
+    {
+      triangles.push_back(t);
+    }
+  }
+  flipBorderChords(triangles, points, static_cast<int>(borderCount));
+  if (triangulation.number_of_vertices() != points.size())
+  {
+    throw InvalidInputError(name + ": collision vertices coincide (outline too tight)");
+  }
+  return triangles;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -624,16 +791,7 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
   result.thicknessAxis = n;
   const double extent = std::max(surface.extent().x(), surface.extent().y());
   auto halfThickness = [&](const Vector2& q, double& middle)
-  {
-    double bottom = 0.0;
-    double top = 0.0;
-    if (!surface.crossing(q, bottom, top))
-    {
-      return -1.0;
-    }
-    middle = 0.5 * (bottom + top);
-    return 0.5 * (top - bottom);
-  };
+  { return halfThicknessAt(surface, q, middle); };
   {
     // Thickness sampled over the silhouette's lattice.
     double largest = 0.0;
@@ -656,93 +814,13 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
   // Border: resampled, moved in until the local half thickness reaches it.
   report(progress, 0.3, "placing the border");
   const int borderCount = borderVertexCountFor(vertexCount);
-  std::vector<Vector2> border = resample(silhouette, borderCount);
-  if (static_cast<int>(border.size()) != borderCount)
-  {
-    border = resampleEvenly(silhouette, borderCount);
-  }
-  {
-    std::vector<Vector2> moved(border.size());
-    for (std::size_t i = 0; i < border.size(); ++i)
-    {
-      const Vector2& previous = border[(i + border.size() - 1) % border.size()];
-      const Vector2& next = border[(i + 1) % border.size()];
-      const Vector2 along = (next - previous).normalized();
-      const Vector2 inward(-along.y(), along.x());
-      double depth = 1e-3 * extent;
-      double middle = 0.0;
-      for (int iteration = 0; iteration < 12; ++iteration)
-      {
-        const double half = halfThickness(border[i] + depth * inward, middle);
-        depth = half > 0.0 ? std::min(half, 0.25 * extent) : 1.5 * depth;
-      }
-      moved[i] = border[i] + depth * inward;
-    }
-    // Moving in gathers points on concave stretches: spread them evenly
-    // again along the moved outline (its corners kept).
-    border = resample(moved, borderCount);
-    if (static_cast<int>(border.size()) != borderCount)
-    {
-      border = resampleEvenly(moved, borderCount);
-    }
-    // On a rough outline (a segmentation's staircase) a point moved in by
-    // its neighbours' inward direction, or resampled across a concave jag,
-    // can land beside the tissue or on a sliver of it: it goes to the
-    // nearest point where the tissue is at least a twentieth of its largest
-    // thickness (rings of growing radius around it), so that its sphere
-    // has a radius to reach the rim with.
-    const double thinnest = 0.025 * result.largestThickness;
-    for (Vector2& q : border)
-    {
-      double middle = 0.0;
-      for (double radius = 1e-3 * extent;
-           halfThickness(q, middle) < thinnest && radius < 0.1 * extent;
-           radius *= 1.5)
-      {
-        for (int k = 0; k < 16; ++k)
-        {
-          const double angle = 2.0 * M_PI * k / 16.0;
-          const Vector2 candidate = q + radius * Vector2(std::cos(angle), std::sin(angle));
-          if (halfThickness(candidate, middle) >= thinnest)
-          {
-            q = candidate;
-            break;
-          }
-        }
-      }
-    }
-  }
+  std::vector<Vector2> border =
+    placeBorder(surface, silhouette, borderCount, extent, result.largestThickness);
 
   // 3. Interior lattice with the count that makes vertexCount in all.
   report(progress, 0.4, "filling the inside");
   const int interiorCount = vertexCount - borderCount;
-  double perimeter = 0.0;
-  for (std::size_t i = 0; i < border.size(); ++i)
-  {
-    perimeter += (border[(i + 1) % border.size()] - border[i]).norm();
-  }
-  const double borderSpacing = perimeter / borderCount;
-  double small = 1e-3 * extent;
-  double large = extent;
-  std::vector<Vector2> interior;
-  for (int iteration = 0; iteration < 60; ++iteration)
-  {
-    const double h = std::sqrt(small * large);
-    std::vector<Vector2> points = latticeInside(border, h, 0.45 * std::min(h, borderSpacing));
-    if (static_cast<int>(points.size()) >= interiorCount)
-    {
-      small = h;
-      interior = std::move(points);
-    }
-    else
-    {
-      large = h;
-    }
-    if (large / small < 1.0 + 1e-6)
-    {
-      break;
-    }
-  }
+  std::vector<Vector2> interior = interiorLattice(border, interiorCount, extent);
   if (static_cast<int>(interior.size()) < interiorCount)
   {
     throw InvalidInputError(nameOf(visual) + ": the outline leaves no room for " +
@@ -754,44 +832,9 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
   report(progress, 0.5, "triangulating");
   std::vector<Vector2> points = border;
   points.insert(points.end(), interior.begin(), interior.end());
-  Triangulation triangulation;
-  std::vector<Triangulation::Vertex_handle> handles;
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    auto handle = triangulation.insert(Kernel::Point_2(points[i].x(), points[i].y()));
-    handle->info() = static_cast<int>(i);
-    handles.push_back(handle);
-  }
-  for (std::size_t i = 0; i < border.size(); ++i)
-  {
-    triangulation.insert_constraint(handles[i], handles[(i + 1) % border.size()]);
-  }
   TriangleMesh& mesh = result.mesh;
   mesh.name = visual.name + " collision";
-  for (auto face = triangulation.finite_faces_begin(); face != triangulation.finite_faces_end();
-       ++face)
-  {
-    Triangle t{};
-    Vector2 centroid = Vector2::Zero();
-    for (int k = 0; k < 3; ++k)
-    {
-      t[k] = face->vertex(k)->info();
-      if (t[k] < 0 || t[k] >= static_cast<int>(points.size()))
-      {
-        throw InvalidInputError(nameOf(visual) + ": its outline crosses itself");
-      }
-      centroid += points[t[k]] / 3.0;
-    }
-    if (insidePolygon(border, centroid))
-    {
-      mesh.triangles.push_back(t);
-    }
-  }
-  flipBorderChords(mesh.triangles, points, borderCount);
-  if (triangulation.number_of_vertices() != points.size())
-  {
-    throw InvalidInputError(nameOf(visual) + ": collision vertices coincide (outline too tight)");
-  }
+  mesh.triangles = triangulateInside(points, border.size(), nameOf(visual));
 
   // 4. Lift to the middle, radius half the thickness.
   report(progress, 0.6, "lifting to the mid-surface");
