@@ -841,6 +841,38 @@ struct SideRegions
   std::array<std::vector<char>, 2> cores;
 };
 
+/// The + and - halves of the rim-meshed surface for the inner paths, and
+/// their cores (the triangles that touch no rim vertex).
+SideRegions sideRegions(const RemeshedSurface& rimmed,
+  const TriangleMeshAdjacency& rimmedAdjacency,
+  const std::vector<std::int8_t>& half)
+{
+  SideRegions regions;
+  regions.adjacency = &rimmedAdjacency;
+  std::vector<char>& onRim = regions.onRim;
+  onRim.assign(rimmed.mesh.vertexCount(), 0);
+  for (const std::vector<int>& path : rimmed.pathVertices)
+  {
+    for (int v : path)
+    {
+      onRim[v] = 1;
+    }
+  }
+  for (int slot = 0; slot < 2; ++slot)
+  {
+    regions.halves[slot].resize(half.size());
+    regions.cores[slot].resize(half.size());
+    for (std::size_t t = 0; t < half.size(); ++t)
+    {
+      const Triangle& tri = rimmed.mesh.triangles[t];
+      regions.halves[slot][t] = half[t] == (slot == 0 ? 1 : -1) ? 1 : 0;
+      regions.cores[slot][t] =
+        regions.halves[slot][t] && !onRim[tri[0]] && !onRim[tri[1]] && !onRim[tri[2]] ? 1 : 0;
+    }
+  }
+  return regions;
+}
+
 /// The requested paths, in parallel or not (same result), in blocks so that
 /// progress (and abort) is reported from this thread between `from` and
 /// `to`. With `halves`, a path of side +1 stays on halves[0], of side -1 on
@@ -1299,6 +1331,88 @@ std::vector<std::vector<double>> bindVisualVertices(VisualCollisionBinding& bind
   return pathFractions;
 }
 
+/// The paired points inside visual edges, each as a one-point path (to
+/// become vertices first; the two sides of a rim vertex share one).
+std::vector<SurfacePath> pairedEdgePointPaths(
+  const std::vector<std::array<SurfacePoint, 2>>& pairedPoints)
+{
+  std::vector<SurfacePath> pairedEdgePoints;
+  for (const auto& pair : pairedPoints)
+  {
+    for (int slot = 0; slot < 2; ++slot)
+    {
+      if (!pair[slot].isVertex() &&
+          (slot == 0 ||
+            !(pair[1].edgeStart == pair[0].edgeStart && pair[1].edgeEnd == pair[0].edgeEnd &&
+              pair[1].edgeParameter == pair[0].edgeParameter)))
+      {
+        SurfacePath single;
+        single.points.push_back(pair[slot]);
+        pairedEdgePoints.push_back(std::move(single));
+      }
+    }
+  }
+  return pairedEdgePoints;
+}
+
+/// The visual vertex of each paired point: its own vertex, or the one its
+/// edge point became (`paired`: the one-point paths inserted, in order).
+std::vector<std::array<int, 2>> pairedVertexIndices(
+  const std::vector<std::array<SurfacePoint, 2>>& pairedPoints,
+  const RemeshedSurface& paired)
+{
+  std::vector<std::array<int, 2>> indices(pairedPoints.size(), { { -1, -1 } });
+  std::size_t next = 0;
+  for (std::size_t v = 0; v < pairedPoints.size(); ++v)
+  {
+    for (int slot = 0; slot < 2; ++slot)
+    {
+      const SurfacePoint& point = pairedPoints[v][slot];
+      if (point.isVertex())
+      {
+        indices[v][slot] = point.vertex;
+      }
+      else if (slot == 1 && indices[v][0] >= 0 && !pairedPoints[v][0].isVertex() &&
+               pairedPoints[v][0].edgeStart == point.edgeStart &&
+               pairedPoints[v][0].edgeEnd == point.edgeEnd &&
+               pairedPoints[v][0].edgeParameter == point.edgeParameter)
+      {
+        indices[v][1] = indices[v][0];
+      }
+      else
+      {
+        indices[v][slot] = paired.pathVertices[next++].front();
+      }
+    }
+  }
+  return indices;
+}
+
+/// Paths that touch are moved apart (SharedPathRuns.h) and inserted again
+/// into `remeshed`, pass by pass (a path re-routed around a vertex frees
+/// the vertices inside it for the next pass: a hub where several paths
+/// touch takes one pass per path around it). Returns each path's detours.
+std::vector<int> separateTouchingPaths(RemeshedSurface& remeshed)
+{
+  std::vector<int> detours(remeshed.pathVertices.size(), 0);
+  for (int pass = 0; pass < MaximumSeparationPasses; ++pass)
+  {
+    const TriangleMeshAdjacency remeshedAdjacency(remeshed.mesh);
+    const SharedRunSeparation separated = separateSharedRuns(
+      remeshed.mesh, remeshedAdjacency, remeshed.pathVertices, SharedRunOffsetFraction);
+    if (separated.runsSeparated == 0)
+    {
+      break;
+    }
+    remeshed = insertPaths(remeshed.mesh, separated.paths, PathMergeTolerance);
+    for (std::size_t k = 0; k < detours.size(); ++k)
+    {
+      detours[k] += separated.detours[k];
+    }
+  }
+  return detours;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -1330,22 +1444,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     pairCollisionVertices(visual, visualAdjacency, visualBvh, collision, radii, topology, settings);
   // Paired points inside visual edges become vertices first (one-point
   // paths); the visual vertices keep their indices.
-  std::vector<SurfacePath> pairedEdgePoints;
-  for (const auto& pair : pairedPoints)
-  {
-    for (int slot = 0; slot < 2; ++slot)
-    {
-      if (!pair[slot].isVertex() &&
-          (slot == 0 ||
-            !(pair[1].edgeStart == pair[0].edgeStart && pair[1].edgeEnd == pair[0].edgeEnd &&
-              pair[1].edgeParameter == pair[0].edgeParameter)))
-      {
-        SurfacePath single;
-        single.points.push_back(pair[slot]);
-        pairedEdgePoints.push_back(std::move(single));
-      }
-    }
-  }
+  const std::vector<SurfacePath> pairedEdgePoints = pairedEdgePointPaths(pairedPoints);
   RemeshedSurface paired;
   if (!pairedEdgePoints.empty())
   {
@@ -1362,33 +1461,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   }
   const TriangleMesh& start = *startMesh;
   const TriangleMeshAdjacency& startAdjacency = *startAdjacencyPointer;
-  binding.pairedVisualVertices.assign(pairedPoints.size(), { { -1, -1 } });
-  {
-    std::size_t next = 0;
-    for (std::size_t v = 0; v < pairedPoints.size(); ++v)
-    {
-      for (int slot = 0; slot < 2; ++slot)
-      {
-        const SurfacePoint& point = pairedPoints[v][slot];
-        if (point.isVertex())
-        {
-          binding.pairedVisualVertices[v][slot] = point.vertex;
-        }
-        else if (slot == 1 && binding.pairedVisualVertices[v][0] >= 0 &&
-                 !pairedPoints[v][0].isVertex() &&
-                 pairedPoints[v][0].edgeStart == point.edgeStart &&
-                 pairedPoints[v][0].edgeEnd == point.edgeEnd &&
-                 pairedPoints[v][0].edgeParameter == point.edgeParameter)
-        {
-          binding.pairedVisualVertices[v][1] = binding.pairedVisualVertices[v][0];
-        }
-        else
-        {
-          binding.pairedVisualVertices[v][slot] = paired.pathVertices[next++].front();
-        }
-      }
-    }
-  }
+  binding.pairedVisualVertices = pairedVertexIndices(pairedPoints, paired);
 
   // 5.2.2 Geodesic paths: one per border edge (the rim path), two per inner
   // edge. First the rim paths, inserted into the mesh (5.2.3): together
@@ -1435,31 +1508,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     collision,
     binding.pairedVisualVertices,
     topology);
-  SideRegions regions; // + and -
-  regions.adjacency = &rimmedAdjacency;
-  {
-    std::vector<char>& onRim = regions.onRim;
-    onRim.assign(rimmed.mesh.vertexCount(), 0);
-    for (const std::vector<int>& path : rimmed.pathVertices)
-    {
-      for (int v : path)
-      {
-        onRim[v] = 1;
-      }
-    }
-    for (int slot = 0; slot < 2; ++slot)
-    {
-      regions.halves[slot].resize(half.size());
-      regions.cores[slot].resize(half.size());
-      for (std::size_t t = 0; t < half.size(); ++t)
-      {
-        const Triangle& tri = rimmed.mesh.triangles[t];
-        regions.halves[slot][t] = half[t] == (slot == 0 ? 1 : -1) ? 1 : 0;
-        regions.cores[slot][t] =
-          regions.halves[slot][t] && !onRim[tri[0]] && !onRim[tri[1]] && !onRim[tri[2]] ? 1 : 0;
-      }
-    }
-  }
+  const SideRegions regions = sideRegions(rimmed, rimmedAdjacency, half);
   std::vector<SurfacePath> innerPaths;
   {
     const GeodesicPathFinder finder(rimmed.mesh, rimmedAdjacency);
@@ -1489,25 +1538,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   }
   allPaths.insert(allPaths.end(), innerPaths.begin(), innerPaths.end());
   RemeshedSurface remeshed = insertPaths(rimmed.mesh, allPaths, PathMergeTolerance);
-  // Paths that touch are moved apart (a path re-routed around a vertex
-  // frees the vertices inside it for the next pass: a hub where several
-  // paths touch takes one pass per path around it).
-  std::vector<int> detours(requests.size(), 0);
-  for (int pass = 0; pass < MaximumSeparationPasses; ++pass)
-  {
-    const TriangleMeshAdjacency remeshedAdjacency(remeshed.mesh);
-    const SharedRunSeparation separated = separateSharedRuns(
-      remeshed.mesh, remeshedAdjacency, remeshed.pathVertices, SharedRunOffsetFraction);
-    if (separated.runsSeparated == 0)
-    {
-      break;
-    }
-    remeshed = insertPaths(remeshed.mesh, separated.paths, PathMergeTolerance);
-    for (std::size_t k = 0; k < detours.size(); ++k)
-    {
-      detours[k] += separated.detours[k];
-    }
-  }
+  const std::vector<int> detours = separateTouchingPaths(remeshed);
   binding.visual = std::move(remeshed.mesh);
   const TriangleMesh& mesh = binding.visual;
   for (std::size_t k = 0; k < requests.size(); ++k)
