@@ -257,6 +257,20 @@ bool TissueCutter::moveToBranchCopy(int v)
     if (holders.empty())
       return false;
     VisualEmbedding.reembed({ v }, { Visual.mesh().positions[v] }, Simulation, holders);
+    // Listed under its new original hexahedron, so that the cuts that copy
+    // that one revisit it (at construction it is listed afterwards).
+    const int before = Branches.originalOf(h);
+    const int after = Branches.originalOf(VisualEmbedding.hexahedron(v));
+    if (before != after && before < static_cast<int>(VisualOfHexahedron.size()))
+    {
+      auto& listed = VisualOfHexahedron[before];
+      const auto found = std::find(listed.begin(), listed.end(), v);
+      if (found != listed.end())
+      {
+        listed.erase(found);
+        VisualOfHexahedron[after].push_back(v);
+      }
+    }
     return VisualEmbedding.hexahedron(v) != h;
   }
   if (holder == h)
