@@ -288,6 +288,143 @@ std::vector<Vector2> silhouetteOutline(const TriangleMesh& mesh,
   return best;
 }
 
+/// Whether two segments of the closed polygon that share no end cross.
+bool crossesItself(const std::vector<Vector2>& polygon)
+{
+  const std::size_t n = polygon.size();
+  auto side = [](const Vector2& a, const Vector2& b, const Vector2& c)
+  { return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x(); };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vector2& a = polygon[i];
+    const Vector2& b = polygon[(i + 1) % n];
+    for (std::size_t j = i + 2; j < n; ++j)
+    {
+      if ((j + 1) % n == i)
+        continue;
+      const Vector2& c = polygon[j];
+      const Vector2& d = polygon[(j + 1) % n];
+      if (side(a, b, c) * side(a, b, d) < 0.0 && side(c, d, a) * side(c, d, b) < 0.0)
+        return true;
+    }
+  }
+  return false;
+}
+
+/// The outline of the surface's shadow along the axis (counter-clockwise,
+/// holes filled): the projected triangles rasterized at a 256th of the
+/// extent, closed by one cell, the largest piece's border traced and
+/// smoothed. For a rough surface (a segmentation's staircase), whose
+/// silhouette edges wander over the step walls and may cross themselves.
+std::vector<Vector2> shadowOutline(const TriangleMesh& mesh, const ProjectedSurface& surface)
+{
+  const double cell = std::max(surface.extent().x(), surface.extent().y()) / 256.0;
+  const Vector2 origin = surface.low() - Vector2(3.0 * cell, 3.0 * cell);
+  const int width = static_cast<int>(std::ceil(surface.extent().x() / cell)) + 7;
+  const int height = static_cast<int>(std::ceil(surface.extent().y() / cell)) + 7;
+  std::vector<char> inside(static_cast<std::size_t>(width) * height, 0);
+  auto at = [width](int i, int j) { return static_cast<std::size_t>(j) * width + i; };
+  for (const Triangle& t : mesh.triangles)
+  {
+    const Vector2 a = (surface.project(mesh.positions[t[0]]) - origin) / cell;
+    const Vector2 b = (surface.project(mesh.positions[t[1]]) - origin) / cell;
+    const Vector2 c = (surface.project(mesh.positions[t[2]]) - origin) / cell;
+    const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    if (std::abs(area) < 1e-12)
+      continue;
+    const Vector2 low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
+    for (int j = static_cast<int>(std::floor(low.y())); j <= static_cast<int>(high.y()); ++j)
+      for (int i = static_cast<int>(std::floor(low.x())); i <= static_cast<int>(high.x()); ++i)
+      {
+        const Vector2 q(i + 0.5, j + 0.5);
+        const double u = ((b - q).x() * (c - q).y() - (b - q).y() * (c - q).x()) / area;
+        const double v = ((c - q).x() * (a - q).y() - (c - q).y() * (a - q).x()) / area;
+        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
+          inside[at(i, j)] = 1;
+      }
+  }
+  // Closing by one cell (pinholes between projected triangles), then the
+  // outside found from the grid's border: what it does not reach is inside.
+  auto dilate = [&](const std::vector<char>& from, char value)
+  {
+    std::vector<char> to(from);
+    for (int j = 1; j + 1 < height; ++j)
+      for (int i = 1; i + 1 < width; ++i)
+        if (from[at(i, j)] != value)
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di)
+              if (from[at(i + di, j + dj)] == value)
+                to[at(i, j)] = value;
+    return to;
+  };
+  inside = dilate(dilate(inside, 1), 0);
+  std::vector<char> outside(inside.size(), 0);
+  std::vector<std::pair<int, int>> stack{ { 0, 0 } };
+  outside[0] = 1;
+  while (!stack.empty())
+  {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    const int next[4][2] = { { i + 1, j }, { i - 1, j }, { i, j + 1 }, { i, j - 1 } };
+    for (const auto& [x, y] : next)
+      if (x >= 0 && y >= 0 && x < width && y < height && !inside[at(x, y)] && !outside[at(x, y)])
+      {
+        outside[at(x, y)] = 1;
+        stack.emplace_back(x, y);
+      }
+  }
+  // Border edges with the inside on their left, corner to corner.
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> next;
+  for (int j = 1; j + 1 < height; ++j)
+    for (int i = 1; i + 1 < width; ++i)
+    {
+      if (outside[at(i, j)])
+        continue;
+      if (outside[at(i, j - 1)])
+        next[{ i, j }].push_back({ i + 1, j });
+      if (outside[at(i + 1, j)])
+        next[{ i + 1, j }].push_back({ i + 1, j + 1 });
+      if (outside[at(i, j + 1)])
+        next[{ i + 1, j + 1 }].push_back({ i, j + 1 });
+      if (outside[at(i - 1, j)])
+        next[{ i, j + 1 }].push_back({ i, j });
+    }
+  std::vector<Vector2> best;
+  while (!next.empty())
+  {
+    std::vector<std::pair<int, int>> loop{ next.begin()->first };
+    while (true)
+    {
+      auto found = next.find(loop.back());
+      if (found == next.end() || found->second.empty())
+        break;
+      const std::pair<int, int> to = found->second.back();
+      found->second.pop_back();
+      if (found->second.empty())
+        next.erase(found);
+      if (to == loop.front())
+        break;
+      loop.push_back(to);
+    }
+    if (loop.size() > best.size())
+    {
+      best.clear();
+      for (const auto& [i, j] : loop)
+        best.push_back(origin + cell * Vector2(i, j));
+    }
+  }
+  // Smoothed a little (the staircase of the cells), counter-clockwise.
+  for (int pass = 0; pass < 3; ++pass)
+  {
+    std::vector<Vector2> smooth(best.size());
+    for (std::size_t k = 0; k < best.size(); ++k)
+      smooth[k] = 0.25 * best[(k + best.size() - 1) % best.size()] + 0.5 * best[k] +
+                  0.25 * best[(k + 1) % best.size()];
+    best = std::move(smooth);
+  }
+  return best;
+}
+
 std::vector<Vector2> resampleEvenly(const std::vector<Vector2>& polygon, int count);
 
 /// `count` points along the closed polygon: its corners (turning by more
@@ -782,7 +919,11 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
 
   // 2. Outline, thinness.
   report(progress, 0.2, "tracing the outline");
-  const std::vector<Vector2> silhouette = silhouetteOutline(visual, surface, n);
+  std::vector<Vector2> silhouette = silhouetteOutline(visual, surface, n);
+  if (silhouette.size() < 3 || crossesItself(silhouette))
+  {
+    silhouette = shadowOutline(visual, surface);
+  }
   if (silhouette.size() < 3)
   {
     throw InvalidInputError(nameOf(visual) + ": no outline seen along the thickness axis");

@@ -3,6 +3,7 @@
 #include "MeshValidation.h"
 #include "vtkThinTissueConversion.h"
 
+#include <vtkCleanPolyData.h>
 #include <vtkFloatArray.h>
 #include <vtkFlyingEdges3D.h>
 #include <vtkImageData.h>
@@ -162,8 +163,12 @@ int vtkSimulatedSegmentationFilter::RequestData(vtkInformation*,
       vtkNew<vtkPolyDataConnectivityFilter> largest;
       largest->SetInputData(result);
       largest->SetExtractionModeToLargestRegion();
-      largest->Update();
-      result = largest->GetOutput();
+      // The dropped fragments' points go too (no unreferenced vertex).
+      vtkNew<vtkCleanPolyData> used;
+      used->SetInputConnection(largest->GetOutputPort());
+      used->PointMergingOff();
+      used->Update();
+      result = used->GetOutput();
     }
     output->ShallowCopy(result);
     vtkNew<vtkPoints> scaled;
