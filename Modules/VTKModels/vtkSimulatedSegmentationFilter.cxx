@@ -96,13 +96,12 @@ int vtkSimulatedSegmentationFilter::RequestData(vtkInformation*,
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   try
   {
-    const thintissue::MeshValidationReport report =
-      thintissue::validateTriangleMesh(thintissue::fromPolyData(input, "input surface"));
-    if (input->GetNumberOfCells() == 0 || report.borderEdges.count > 0 ||
-        report.nonManifoldEdges.count > 0)
+    if (input->GetNumberOfCells() == 0)
     {
-      throw std::runtime_error("the input surface must be closed: " + report.toString());
+      throw std::runtime_error("the input surface must be closed: it has no triangle");
     }
+    thintissue::requireClosedOrientedManifold(
+      thintissue::fromPolyData(input, "input surface"), "the input surface");
     const double* spacing = this->VoxelSpacing;
     const double* phase = this->GridPhase;
     if (!(phase[0] >= 0.0 && phase[0] < 1.0 && phase[1] >= 0.0 && phase[1] < 1.0 &&

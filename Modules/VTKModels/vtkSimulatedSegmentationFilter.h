@@ -16,7 +16,8 @@
  * is scaled by OutputScale (0.001 gives metres from millimetres) so that
  * tests see odd units too.
  *
- * Errors (vtkErrorMacro, empty output): an empty or open input surface, a
+ * Errors (vtkErrorMacro, empty output): an input surface that is empty or
+ * not closed, manifold and consistently oriented, a
  * non-positive spacing or scale, a negative sigma or noise amplitude, a
  * phase outside [0, 1), or a grid of more than MaximumVoxels voxels.
  */

@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 namespace
 {
@@ -172,42 +173,39 @@ TEST(SimulatedSegmentation, EveryTissueModelGoesThrough)
   }
 }
 
+/// The filter on `input`, set up by `configure`, reports an error naming
+/// `word` and leaves its output empty.
+void expectRefused(const TriangleMesh& input,
+  const std::function<void(vtkSimulatedSegmentationFilter*)>& configure,
+  const std::string& word)
+{
+  vtkNew<vtkSimulatedSegmentationFilter> filter;
+  vtkNew<ErrorCounter> errors;
+  observe(filter, errors);
+  filter->SetInputData(toPolyData(input));
+  configure(filter);
+  filter->Update();
+  EXPECT_GE(errors->count, 1);
+  EXPECT_NE(errors->all.find(word), std::string::npos) << errors->all;
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+}
+
 TEST(SimulatedSegmentation, BadInputIsRefusedWithAnEmptyOutput)
 {
   const MeniscusModel meniscus = makeMeniscus();
-  {
-    TriangleMesh open = meniscus.visual;
-    open.triangles.pop_back();
-    vtkNew<vtkSimulatedSegmentationFilter> filter;
-    vtkNew<ErrorCounter> errors;
-    observe(filter, errors);
-    filter->SetInputData(toPolyData(open));
-    filter->Update();
-    EXPECT_GE(errors->count, 1);
-    EXPECT_NE(errors->all.find("closed"), std::string::npos) << errors->all;
-    EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
-  }
-  {
-    vtkNew<vtkSimulatedSegmentationFilter> filter;
-    vtkNew<ErrorCounter> errors;
-    observe(filter, errors);
-    filter->SetInputData(toPolyData(meniscus.visual));
-    filter->SetGridPhase(0.5, 1.0, 0.5);
-    filter->Update();
-    EXPECT_GE(errors->count, 1);
-    EXPECT_NE(errors->all.find("phase"), std::string::npos) << errors->all;
-  }
-  {
-    // A spacing in metres for a surface in millimetres.
-    vtkNew<vtkSimulatedSegmentationFilter> filter;
-    vtkNew<ErrorCounter> errors;
-    observe(filter, errors);
-    filter->SetInputData(toPolyData(meniscus.visual));
-    filter->SetVoxelSpacing(0.0003, 0.0003, 0.0009);
-    filter->Update();
-    EXPECT_GE(errors->count, 1);
-    EXPECT_NE(errors->all.find("units"), std::string::npos) << errors->all;
-  }
+  TriangleMesh open = meniscus.visual;
+  open.triangles.pop_back();
+  expectRefused(
+    open, [](vtkSimulatedSegmentationFilter*) {}, "closed");
+  expectRefused(
+    meniscus.visual,
+    [](vtkSimulatedSegmentationFilter* f) { f->SetGridPhase(0.5, 1.0, 0.5); },
+    "phase");
+  // A spacing in metres for a surface in millimetres.
+  expectRefused(
+    meniscus.visual,
+    [](vtkSimulatedSegmentationFilter* f) { f->SetVoxelSpacing(0.0003, 0.0003, 0.0009); },
+    "units");
 }
 
 /// The collision mid-surface of 105 vertices and the binding, checked.
