@@ -114,6 +114,30 @@ TEST(CollisionMeshGeneration, SteakAtTheThesisResolutions)
   EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 76.0, 76.0 * 0.1);
 }
 
+// A real meniscus segmented from MRI (../shared/data/knee-smith2019, in
+// metres; skipped without it): the thesis's 105 collision vertices, the
+// generation and binding checks, in metres and in millimetres.
+TEST(CollisionMeshGeneration, RealMedialMeniscusInMetresAndMillimetres)
+{
+  const std::string data = thintissue::testing::sharedDataDirectory();
+  const std::string path = data + "/knee-smith2019/smith2019-R-medial-meniscus.stl";
+  if (data.empty() || !std::filesystem::exists(path))
+  {
+    GTEST_SKIP() << "../shared/data/knee-smith2019 not present";
+  }
+  TriangleMesh meniscus = readTriangleMesh(path);
+  {
+    SCOPED_TRACE("metres");
+    checkGenerated(meniscus, 105, 0.5);
+  }
+  for (Vector3& x : meniscus.positions)
+  {
+    x *= 1000.0;
+  }
+  SCOPED_TRACE("millimetres");
+  checkGenerated(meniscus, 105, 0.5);
+}
+
 TEST(CollisionMeshGeneration, SheetAndMeniscus)
 {
   {
