@@ -14,15 +14,6 @@ namespace thintissue
 namespace
 {
 
-Vector3 barycentricIn(const std::array<Vector2, 3>& corners, const Vector2& x)
-{
-  Eigen::Matrix2d m;
-  m.col(0) = corners[1] - corners[0];
-  m.col(1) = corners[2] - corners[0];
-  const Vector2 bc = m.inverse() * (x - corners[0]);
-  return Vector3(1.0 - bc.x() - bc.y(), bc.x(), bc.y());
-}
-
 /// The piece (a triangle in the plane) a point lies in, or is nearest to:
 /// the one where its smallest barycentric coordinate is largest.
 int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vector2& x)
@@ -169,20 +160,24 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
       for (int v : corners[i])
         around[cursor[v]++] = static_cast<int>(i);
   }
-  // Edges along the traced cuts (local, lower first), sorted.
+  // Edges along the traced cuts (local, lower first), sorted; an edge is
+  // looked up only when both its ends lie on a traced cut.
   std::vector<std::pair<int, int>> cutEdges;
+  std::vector<char> onTrace(count, 0);
   for (const CrossingPath& crossing : region.crossings)
     for (std::size_t i = 0; i + 1 < crossing.vertices.size(); ++i)
     {
       const int a = context.local(crossing.vertices[i]);
       const int b = context.local(crossing.vertices[i + 1]);
       cutEdges.emplace_back(std::min(a, b), std::max(a, b));
+      onTrace[a] = onTrace[b] = 1;
     }
   std::sort(cutEdges.begin(), cutEdges.end());
-  auto isCutEdge = [&cutEdges](int a, int b)
+  auto isCutEdge = [&cutEdges, &onTrace](int a, int b)
   {
-    return std::binary_search(
-      cutEdges.begin(), cutEdges.end(), std::make_pair(std::min(a, b), std::max(a, b)));
+    return onTrace[a] && onTrace[b] &&
+           std::binary_search(
+             cutEdges.begin(), cutEdges.end(), std::make_pair(std::min(a, b), std::max(a, b)));
   };
   std::vector<int> piece(triangleCount, -1);
   std::vector<int> members;
@@ -232,12 +227,19 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
 {
   const int parent = context.cut->splits[region.split].parent;
   const int side = region.side > 0 ? 1 : -1;
+  Eigen::Matrix2d frameMatrix;
+  frameMatrix.col(0) = region.frame[1] - region.frame[0];
+  frameMatrix.col(1) = region.frame[2] - region.frame[0];
+  const Eigen::Matrix2d frameInverse = frameMatrix.inverse();
+  std::vector<int>& childRegion = Regions[child][region.side];
+  if (childRegion.empty())
+    childRegion.reserve(region.newTriangles.size());
   for (int m : members)
   {
     const int t = region.newTriangles[m];
     TriangleRegion[t] = child;
     TriangleSide[t] = static_cast<std::int8_t>(side);
-    Regions[child][region.side].push_back(t);
+    childRegion.push_back(t);
     for (int local : corners[m])
     {
       const int v = region.vertices[local];
@@ -246,7 +248,8 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
         continue;
       // The parent parameters of where the vertex lies in the plane it
       // was cut in (its binding's own, unless a fold was repaired there).
-      const Vector3 x = barycentricIn(region.frame, region.planar[local]);
+      const Vector2 bc = frameInverse * (region.planar[local] - region.frame[0]);
+      const Vector3 x(1.0 - bc.x() - bc.y(), bc.x(), bc.y());
       const Vector3 y = (x.transpose() * inverse).transpose();
       b.element = child;
       b.parameters = y.cwiseMax(0.0) / y.cwiseMax(0.0).sum();

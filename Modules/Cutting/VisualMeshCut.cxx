@@ -42,6 +42,13 @@ LocalMesh extractTriangles(const TriangleMesh& mesh, const std::vector<int>& tri
   std::unordered_map<int, int> localTexture;
   const std::vector<std::string> names = mesh.pointAttributes.names();
   std::vector<std::vector<double>> attributes(names.size());
+  // Room for a patch's vertices (about half its triangles, plus its rim).
+  const std::size_t vertices = triangles.size() + 16;
+  local.localVertex.reserve(vertices);
+  local.globalVertex.reserve(vertices);
+  local.mesh.positions.reserve(vertices);
+  local.mesh.triangles.reserve(triangles.size());
+  local.globalTriangle.reserve(triangles.size());
   for (int t : triangles)
   {
     Triangle corners{};
@@ -942,6 +949,7 @@ void CuttableVisualMesh::selectTouchedTriangles(int r,
   // Per local vertex: 1 if a traced path passes it, 2 if a path crosses
   // an edge from it (then the edge is looked up).
   context.activate(region);
+  region.newTriangles.reserve(region.triangles.size() + region.triangles.size() / 2);
   std::vector<char> mark(region.vertices.size(), 0);
   std::vector<std::uint64_t> edgePoints;
   for (const CrossingPath& crossing : region.crossings)
