@@ -94,6 +94,14 @@ std::string listText(const std::vector<int>& values, std::size_t shown)
   return values.size() > shown ? text + ", ..." : text;
 }
 
+/// "1 hole", "2 holes", "3 vertices".
+std::string counted(int count, const std::string& noun)
+{
+  const bool es = noun.size() > 1 && noun.compare(noun.size() - 2, 2, "ex") == 0;
+  const std::string plural = es ? noun.substr(0, noun.size() - 2) + "ices" : noun + "s";
+  return std::to_string(count) + " " + (count == 1 ? noun : plural);
+}
+
 /// The input as the repair sees it. Repair never moves a point, so a
 /// position names the input vertex it came from (the first one there, when
 /// several coincide), and a vertex triple names the input triangle.
@@ -576,8 +584,8 @@ void fillSmallHoles(Surface& surface,
     report.filledHoleBorderEdges += edges;
     log.note(Change::Hole,
       "filled the hole with " + where + ": " +
-        std::to_string(report.addedTriangles - addedTriangles) + " triangles, " +
-        std::to_string(report.addedVertices - addedVertices) + " new vertices");
+        counted(report.addedTriangles - addedTriangles, "triangle") + ", " +
+        counted(report.addedVertices - addedVertices, "new vertex"));
   }
 }
 
@@ -812,32 +820,48 @@ bool MeshRepairReport::changed() const
 
 std::string MeshRepairReport::summary() const
 {
-  std::ostringstream out;
-  out << "repair of mesh '" << meshName << "': ";
-  if (!changed() && openBorders == 0 && unfilledHoles == 0)
+  // Only what happened, so that a short repair reads short.
+  std::vector<std::string> parts;
+  const auto add = [&parts](int count, const std::string& text)
   {
-    out << "nothing to repair\n";
-    return out.str();
-  }
-  out << mergedCoincidentVertices << " coincident vertices merged, " << removedUnreferencedVertices
-      << " unreferenced vertices removed, " << removedDegenerateTriangles << " degenerate and "
-      << removedDuplicateTriangles << " duplicate triangles removed, " << nonManifoldVertices
-      << " non-manifold vertices split (" << splitNonManifoldVertices << " vertices added), "
-      << nonManifoldEdges << " non-manifold edges separated, " << filledHoles << " holes filled ("
-      << filledHoleBorderEdges << " border edges, " << addedTriangles << " triangles and "
-      << addedVertices << " vertices added), " << flippedTriangles << " triangles flipped, "
-      << reversedNormals << " normals reversed";
-  if (openBorders > 0 || unfilledHoles > 0)
+    if (count > 0)
+    {
+      parts.push_back(text);
+    }
+  };
+  add(mergedCoincidentVertices, "merged " + counted(mergedCoincidentVertices, "coincident vertex"));
+  add(removedUnreferencedVertices,
+    "removed " + counted(removedUnreferencedVertices, "unreferenced vertex"));
+  add(removedDegenerateTriangles,
+    "removed " + counted(removedDegenerateTriangles, "degenerate triangle"));
+  add(removedDuplicateTriangles,
+    "removed " + counted(removedDuplicateTriangles, "duplicate triangle"));
+  add(nonManifoldVertices,
+    "split " + counted(nonManifoldVertices, "non-manifold vertex") + " (" +
+      counted(splitNonManifoldVertices, "vertex") + " added)");
+  add(nonManifoldEdges,
+    "separated the triangles at " + counted(nonManifoldEdges, "non-manifold edge"));
+  add(filledHoles,
+    "filled " + counted(filledHoles, "hole") + " (" +
+      counted(filledHoleBorderEdges, "border edge") + "; " + counted(addedTriangles, "triangle") +
+      " and " + counted(addedVertices, "vertex") + " added)");
+  add(flippedTriangles, "flipped " + counted(flippedTriangles, "triangle"));
+  add(reversedNormals, "reversed " + counted(reversedNormals, "normal"));
+  add(openBorders,
+    "left open " + counted(openBorders, "border") + " longer than a hole (" +
+      counted(openBorderEdges, "edge") + ")");
+  add(unfilledHoles, "could not fill " + counted(unfilledHoles, "hole"));
+  std::string text = "repair of mesh '" + meshName + "': ";
+  for (std::size_t i = 0; i < parts.size(); ++i)
   {
-    out << "; left open: " << openBorders << " borders longer than a hole (" << openBorderEdges
-        << " edges), " << unfilledHoles << " holes that could not be filled";
+    text += (i > 0 ? "; " : "") + parts[i];
   }
-  out << "\n";
+  text += parts.empty() ? "nothing to repair\n" : "\n";
   for (const std::string& change : changes)
   {
-    out << "  " << change << "\n";
+    text += "  " + change + "\n";
   }
-  return out.str();
+  return text;
 }
 
 std::string MeshRepairReport::toJson() const
