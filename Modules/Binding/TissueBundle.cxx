@@ -79,6 +79,22 @@ TissueBundle prepareTissue(const TriangleMesh& visual,
   return bundle;
 }
 
+void addBundleMetadata(TissueBundle& bundle, const std::string& key, const std::string& json)
+{
+  try
+  {
+    // A bundle from elsewhere may carry no metadata yet: start an object.
+    nlohmann::json metadata =
+      bundle.metadata.empty() ? nlohmann::json::object() : nlohmann::json::parse(bundle.metadata);
+    metadata[key] = nlohmann::json::parse(json);
+    bundle.metadata = metadata.dump(2);
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    throw InvalidInputError("bundle metadata: cannot add '" + key + "': " + e.what());
+  }
+}
+
 void writeTissueBundle(const std::string& path, const TissueBundle& bundle)
 {
   // The input checksum of a bundle is that of its own meshes: a bundle is

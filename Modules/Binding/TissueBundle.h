@@ -53,6 +53,13 @@ THINTISSUEBINDING_EXPORT TissueBundle prepareTissue(const TriangleMesh& visual,
   const TissuePreparationSettings& settings = {},
   const GenerationProgress& progress = {});
 
+/// Adds `json` (a JSON value as text) to the bundle's metadata under `key`,
+/// replacing what was there (e.g. "repair": what MeshRepair changed before
+/// preparation). Throws InvalidInputError when `json` is not valid JSON.
+THINTISSUEBINDING_EXPORT void addBundleMetadata(TissueBundle& bundle,
+  const std::string& key,
+  const std::string& json);
+
 /// Writes the bundle (atomically). Throws FileError naming the file.
 THINTISSUEBINDING_EXPORT void writeTissueBundle(const std::string& path,
   const TissueBundle& bundle);
