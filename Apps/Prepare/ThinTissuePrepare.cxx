@@ -5,11 +5,20 @@
 //
 //   ThinTissuePrepare VISUAL_MESH -o BUNDLE [--collision-vertices N | --collision-triangles N]
 //                     [--hexahedra N] [--collision-output FILE.vtp]
-//                     [--hexahedra-output FILE.vtu] [--max-thickness-ratio R]
+//                     [--hexahedra-output FILE.vtu] [--max-thickness-ratio R] [--repair]
+//
+// With --repair the visual mesh is repaired first (MeshRepair.h: non-manifold
+// vertices split, small holes filled, degenerate and duplicate triangles
+// removed, triangles oriented); what changed and where is printed and kept
+// in the bundle's metadata under "repair". Without it, a mesh refused for a
+// defect that repair fixes gets an error that says so.
 //
 // Exit codes: 0 done, 1 failed (unreadable mesh, bad input, write error),
 // 2 bad command line.
+#include "MeshRepair.h"
+#include "MeshValidation.h"
 #include "ThinTissueAppSupport.h"
+#include "ThinTissueError.h"
 #include "TissueBundle.h"
 #include "vtkThinTissueConversion.h"
 
@@ -20,6 +29,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -38,13 +48,14 @@ struct Options
   int collisionTriangles = 0;
   int hexahedra = 76;
   double maximumThicknessRatio = 0.35;
+  bool repair = false;
 };
 
 void printUsage(std::ostream& out)
 {
   out << "usage: ThinTissuePrepare VISUAL_MESH -o BUNDLE [--collision-vertices N] [--hexahedra N]\n"
          "                         [--collision-output FILE.vtp] [--hexahedra-output FILE.vtu]\n"
-         "                         [--max-thickness-ratio R]\n"
+         "                         [--max-thickness-ratio R] [--repair]\n"
          "\n"
          "Makes a ready tissue from a closed, thin visual surface: a collision mid-surface\n"
          "with per-vertex radii (half the local thickness), hexahedra for the simulation,\n"
@@ -59,6 +70,10 @@ void printUsage(std::ostream& out)
          "  --collision-output FILE.vtp  also write the collision mesh (with Radius)\n"
          "  --hexahedra-output FILE.vtu  also write the hexahedra\n"
          "  --max-thickness-ratio R      thickness over extent allowed (default 0.35)\n"
+         "  --repair                     repair the visual mesh first: split non-manifold\n"
+         "                               vertices, fill small holes, remove degenerate and\n"
+         "                               duplicate triangles, orient the triangles; prints\n"
+         "                               what changed and where, and keeps it in the bundle\n"
          "  --help                       this text\n";
 }
 
@@ -85,6 +100,11 @@ int parseArguments(int argc, char* argv[], Options& options)
     {
       printUsage(std::cout);
       return -1;
+    }
+    if (argument == "--repair")
+    {
+      options.repair = true;
+      continue;
     }
     const bool takesValue = argument == "-o" || argument == "--output" ||
                             argument == "--collision-vertices" || argument == "--hexahedra" ||
@@ -156,6 +176,52 @@ int fail(const std::string& message)
   return 1;
 }
 
+/// What --repair would do to `visual`, as the end of the error message:
+/// said only when the repaired mesh would pass the closed-surface checks
+/// that refused it, so that the advice is never wrong.
+std::string repairAdvice(const thintissue::TriangleMesh& visual)
+{
+  thintissue::MeshRepairReport report;
+  thintissue::MeshValidationReport validation;
+  try
+  {
+    validation =
+      thintissue::validateTriangleMesh(thintissue::repairTriangleMesh(visual, {}, &report));
+  }
+  catch (const thintissue::Error&)
+  {
+    return {}; // beyond repair: the original message says enough
+  }
+  if (!report.changed() || !validation.isClosedManifold() || validation.signedVolume <= 0.0)
+  {
+    return report.openBorders == 0
+             ? std::string()
+             : " (--repair fills only small holes; this mesh has " +
+                 std::to_string(report.openBorders) + " open border" +
+                 (report.openBorders == 1 ? "" : "s") + " longer than a hole)";
+  }
+  std::vector<std::string> actions;
+  const auto add = [&actions](int count, const std::string& action)
+  {
+    if (count > 0)
+    {
+      actions.push_back(action);
+    }
+  };
+  add(report.nonManifoldVertices + report.nonManifoldEdges, "split non-manifold vertices");
+  add(report.filledHoles, "fill small holes");
+  add(report.removedDegenerateTriangles, "remove degenerate triangles");
+  add(report.removedDuplicateTriangles, "remove duplicate triangles");
+  add(report.flippedTriangles, "orient the triangles consistently and outward");
+  add(report.mergedCoincidentVertices, "merge coincident vertices");
+  std::string text;
+  for (std::size_t i = 0; i < actions.size(); ++i)
+  {
+    text += (i == 0 ? "" : i + 1 == actions.size() ? " and " : ", ") + actions[i];
+  }
+  return " (run with --repair to " + text + ")";
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -173,16 +239,23 @@ int main(int argc, char* argv[])
     return fail(error);
   }
   TextProgressBar bar;
+  thintissue::TriangleMesh visual;
   try
   {
-    thintissue::TriangleMesh visual = thintissue::fromPolyData(visualData, options.visual);
+    visual = thintissue::fromPolyData(visualData, options.visual);
     visual.name = options.visual;
+    thintissue::MeshRepairReport repair;
+    if (options.repair)
+    {
+      visual = thintissue::repairTriangleMesh(visual, {}, &repair);
+      std::cout << repair.summary() << std::flush;
+    }
     thintissue::TissuePreparationSettings settings;
     settings.collision.vertexCount = options.collisionVertices;
     settings.collision.triangleCount = options.collisionTriangles;
     settings.collision.maximumThicknessRatio = options.maximumThicknessRatio;
     settings.hexahedronCount = options.hexahedra;
-    const thintissue::TissueBundle bundle = thintissue::prepareTissue(visual,
+    thintissue::TissueBundle bundle = thintissue::prepareTissue(visual,
       settings,
       [&bar](double fraction, const char* stage)
       {
@@ -190,6 +263,10 @@ int main(int argc, char* argv[])
         return true;
       });
     bar.finish();
+    if (options.repair)
+    {
+      thintissue::addBundleMetadata(bundle, "repair", repair.toJson());
+    }
     thintissue::writeTissueBundle(options.bundle, bundle);
     if (!options.collisionOutput.empty())
     {
@@ -215,6 +292,12 @@ int main(int argc, char* argv[])
               << "wrote '" << options.bundle << "': " << bundle.collision.vertexCount()
               << " collision vertices, " << bundle.simulation.hexahedronCount() << " hexahedra, "
               << bundle.visual.vertexCount() << " bound visual vertices\n";
+  }
+  catch (const thintissue::InvalidInputError& e)
+  {
+    bar.finish();
+    const bool read = !visual.triangles.empty();
+    return fail(e.what() + (options.repair || !read ? std::string() : repairAdvice(visual)));
   }
   catch (const std::exception& e)
   {
