@@ -6,6 +6,7 @@
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -92,6 +93,12 @@ std::string listText(const std::vector<int>& values, std::size_t shown)
     text += (i > 0 ? ", " : "") + std::to_string(values[i]);
   }
   return values.size() > shown ? text + ", ..." : text;
+}
+
+double diagonalOf(const TriangleMesh& mesh)
+{
+  const BoundingBox box = mesh.boundingBox();
+  return box.isEmpty() ? 0.0 : box.diagonal().norm();
 }
 
 /// "1 hole", "2 holes", "3 vertices".
@@ -422,31 +429,64 @@ void splitPinchedVertices(Surface& surface,
   }
 }
 
-/// Zero-area triangles with three distinct corners (collinear): CGAL
-/// removes them by flipping or collapsing an edge.
+/// validateTriangleMesh (by default) calls a triangle degenerate when its
+/// area is below this fraction of the squared bounding-box diagonal; repair
+/// must remove what validation refuses.
+constexpr double DegenerateAreaTolerance = 1e-14;
+/// Such a triangle is a cap (an angle above about 177 degrees) or a needle
+/// (an edge a thousand times shorter than another), which CGAL removes by
+/// flipping or collapsing an edge.
+constexpr double CapCosine = -0.999;
+constexpr double NeedleRatio = 1000.0;
+
+void noteDegenerate(const Surface& surface,
+  const std::vector<FaceIndex>& faces,
+  const char* what,
+  const InputIndex& input,
+  RepairLog& log)
+{
+  for (FaceIndex f : faces)
+  {
+    const Corners corners = surfaceCorners(surface, f, input);
+    log.note(Change::Degenerate,
+      std::string("removed ") + what + " triangle " + std::to_string(input.triangleOf(corners)) +
+        " (vertices " + listText({ corners[0], corners[1], corners[2] }, 3) + ") at " +
+        input.vertexPlace(corners[0]) + "; an edge there flipped or collapsed");
+  }
+}
+
+/// Zero-area triangles with three distinct corners: exactly collinear ones
+/// (CGAL remove_degenerate_faces), then those whose area is round-off only
+/// (CGAL's experimental remove_almost_degenerate_faces on just those).
 void removeDegenerateTriangles(Surface& surface,
+  double diagonal,
   const InputIndex& input,
   RepairLog& log,
   MeshRepairReport& report)
 {
   std::vector<FaceIndex> degenerate;
   PMP::degenerate_faces(surface, std::back_inserter(degenerate));
-  if (degenerate.empty())
-  {
-    return;
-  }
-  for (FaceIndex f : degenerate)
-  {
-    const Corners corners = surfaceCorners(surface, f, input);
-    log.note(Change::Degenerate,
-      "removed zero-area triangle " + std::to_string(input.triangleOf(corners)) + " (vertices " +
-        listText({ corners[0], corners[1], corners[2] }, 3) + ") at " +
-        input.vertexPlace(corners[0]) + "; its neighbour's edge flipped or collapsed");
-  }
+  noteDegenerate(surface, degenerate, "zero-area", input, log);
   report.removedDegenerateTriangles += static_cast<int>(degenerate.size());
-  if (!PMP::remove_degenerate_faces(surface))
+  if (!degenerate.empty() && !PMP::remove_degenerate_faces(surface))
   {
     log.note(Change::Degenerate, "some zero-area triangles could not be removed");
+  }
+  surface.collect_garbage();
+  std::vector<FaceIndex> flat;
+  for (FaceIndex f : surface.faces())
+  {
+    if (PMP::face_area(f, surface) <= DegenerateAreaTolerance * diagonal * diagonal)
+    {
+      flat.push_back(f);
+    }
+  }
+  noteDegenerate(surface, flat, "nearly flat", input, log);
+  report.removedDegenerateTriangles += static_cast<int>(flat.size());
+  if (!flat.empty() && !PMP::experimental::remove_almost_degenerate_faces(
+                         flat, surface, CapCosine, NeedleRatio, 0.0))
+  {
+    log.note(Change::Degenerate, "some nearly flat triangles could not be removed");
   }
   surface.collect_garbage();
 }
@@ -714,6 +754,35 @@ RepairedMesh meshOf(const Surface& surface,
   return repaired;
 }
 
+/// Input vertices that a degenerate triangle's edge collapse took away.
+void noteCollapsedVertices(const RepairedMesh& repaired,
+  const InputIndex& input,
+  RepairLog& log,
+  MeshRepairReport& report)
+{
+  const TriangleMesh& mesh = input.mesh();
+  std::vector<char> kept(mesh.vertexCount(), 0);
+  for (std::size_t v = 0; v < repaired.vertexSource.size(); ++v)
+  {
+    kept[repaired.vertexSource[v]] |= repaired.vertexAdded[v] ? 0 : 1;
+  }
+  std::vector<char> used(mesh.vertexCount(), 0);
+  for (const Triangle& tri : mesh.triangles)
+  {
+    used[tri[0]] = used[tri[1]] = used[tri[2]] = 1;
+  }
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+  {
+    const int vi = static_cast<int>(v);
+    if (used[v] && input.vertexAt(vi) == vi && !kept[v])
+    {
+      ++report.collapsedVertices;
+      log.note(Change::Degenerate,
+        "removed " + input.vertexPlace(vi) + ": an edge of a degenerate triangle collapsed");
+    }
+  }
+}
+
 /// Kept vertices keep their normals, except where a flipped triangle left a
 /// normal pointing against the surface; added vertices get area-weighted
 /// normals.
@@ -801,20 +870,14 @@ void carryTextureCoordinates(const TriangleMesh& input, RepairedMesh& repaired)
   }
 }
 
-double diagonalOf(const TriangleMesh& mesh)
-{
-  const BoundingBox box = mesh.boundingBox();
-  return box.isEmpty() ? 0.0 : box.diagonal().norm();
-}
-
 } // namespace
 
 bool MeshRepairReport::changed() const
 {
   return mergedCoincidentVertices + removedUnreferencedVertices + removedDegenerateTriangles +
-           removedDuplicateTriangles + nonManifoldVertices + splitNonManifoldVertices +
-           nonManifoldEdges + filledHoles + addedTriangles + addedVertices + flippedTriangles +
-           reversedNormals >
+           collapsedVertices + removedDuplicateTriangles + nonManifoldVertices +
+           splitNonManifoldVertices + nonManifoldEdges + filledHoles + addedTriangles +
+           addedVertices + flippedTriangles + reversedNormals >
          0;
 }
 
@@ -834,6 +897,8 @@ std::string MeshRepairReport::summary() const
     "removed " + counted(removedUnreferencedVertices, "unreferenced vertex"));
   add(removedDegenerateTriangles,
     "removed " + counted(removedDegenerateTriangles, "degenerate triangle"));
+  add(collapsedVertices,
+    "removed " + counted(collapsedVertices, "vertex") + " with degenerate triangles");
   add(removedDuplicateTriangles,
     "removed " + counted(removedDuplicateTriangles, "duplicate triangle"));
   add(nonManifoldVertices,
@@ -870,6 +935,7 @@ std::string MeshRepairReport::toJson() const
   json["mergedCoincidentVertices"] = mergedCoincidentVertices;
   json["removedUnreferencedVertices"] = removedUnreferencedVertices;
   json["removedDegenerateTriangles"] = removedDegenerateTriangles;
+  json["collapsedVertices"] = collapsedVertices;
   json["removedDuplicateTriangles"] = removedDuplicateTriangles;
   json["nonManifoldVertices"] = nonManifoldVertices;
   json["splitNonManifoldVertices"] = splitNonManifoldVertices;
@@ -903,11 +969,12 @@ TriangleMesh repairTriangleMesh(const TriangleMesh& mesh,
   orientSoup(soup, input, log, out);
   Surface surface = surfaceOf(soup, mesh.name);
   splitPinchedVertices(surface, input, log, out);
-  removeDegenerateTriangles(surface, input, log, out);
+  removeDegenerateTriangles(surface, diagonalOf(mesh), input, log, out);
   VertexSources sources = addVertexSources(surface, input);
   fillSmallHoles(surface, settings, diagonalOf(mesh), sources, input, log, out);
   orientPieces(surface, settings.orientOutward, sources, input);
   RepairedMesh repaired = meshOf(surface, sources, input, log, out);
+  noteCollapsedVertices(repaired, input, log, out);
   if (mesh.hasNormals())
   {
     carryNormals(mesh, repaired, log, out);

@@ -55,6 +55,8 @@ struct THINTISSUEBINDING_EXPORT MeshRepairReport
   int mergedCoincidentVertices = 0;
   int removedUnreferencedVertices = 0;
   int removedDegenerateTriangles = 0;
+  /// Vertices removed with a degenerate triangle (an edge collapsed).
+  int collapsedVertices = 0;
   int removedDuplicateTriangles = 0;
   /// Non-manifold vertices found and the vertices added to split them.
   int nonManifoldVertices = 0;
