@@ -222,6 +222,33 @@ std::string repairAdvice(const thintissue::TriangleMesh& visual)
   return " (run with --repair to " + text + ")";
 }
 
+/// Writes --collision-output and --hexahedra-output if asked; returns the
+/// file that could not be written ("" when all were).
+std::string writeOptionalOutputs(const Options& options, const thintissue::TissueBundle& bundle)
+{
+  if (!options.collisionOutput.empty())
+  {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(thintissue::toPolyData(bundle.collision));
+    writer->SetFileName(options.collisionOutput.c_str());
+    if (writer->Write() != 1)
+    {
+      return options.collisionOutput;
+    }
+  }
+  if (!options.hexahedraOutput.empty())
+  {
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    writer->SetInputData(thintissue::toUnstructuredGrid(bundle.simulation));
+    writer->SetFileName(options.hexahedraOutput.c_str());
+    if (writer->Write() != 1)
+    {
+      return options.hexahedraOutput;
+    }
+  }
+  return {};
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -268,25 +295,10 @@ int main(int argc, char* argv[])
       thintissue::addBundleMetadata(bundle, "repair", repair.toJson());
     }
     thintissue::writeTissueBundle(options.bundle, bundle);
-    if (!options.collisionOutput.empty())
+    const std::string unwritten = writeOptionalOutputs(options, bundle);
+    if (!unwritten.empty())
     {
-      vtkNew<vtkXMLPolyDataWriter> writer;
-      writer->SetInputData(thintissue::toPolyData(bundle.collision));
-      writer->SetFileName(options.collisionOutput.c_str());
-      if (writer->Write() != 1)
-      {
-        return fail("cannot write '" + options.collisionOutput + "'");
-      }
-    }
-    if (!options.hexahedraOutput.empty())
-    {
-      vtkNew<vtkXMLUnstructuredGridWriter> writer;
-      writer->SetInputData(thintissue::toUnstructuredGrid(bundle.simulation));
-      writer->SetFileName(options.hexahedraOutput.c_str());
-      if (writer->Write() != 1)
-      {
-        return fail("cannot write '" + options.hexahedraOutput + "'");
-      }
+      return fail("cannot write '" + unwritten + "'");
     }
     std::cout << bundle.metadata << "\n"
               << "wrote '" << options.bundle << "': " << bundle.collision.vertexCount()
