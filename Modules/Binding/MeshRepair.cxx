@@ -22,9 +22,7 @@
 #include <array>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 #include <map>
-#include <set>
 #include <sstream>
 #include <utility>
 
@@ -716,10 +714,12 @@ RepairedMesh meshOf(const Surface& surface,
 {
   RepairedMesh repaired;
   repaired.mesh.name = input.mesh().name;
-  std::map<VertexIndex, int> number;
+  // Surface indices count removed elements too (none remain after the
+  // garbage collection of removeDegenerateTriangles; hole filling only adds).
+  std::vector<int> number(surface.num_vertices(), -1);
   for (VertexIndex v : surface.vertices())
   {
-    number[v] = static_cast<int>(repaired.mesh.positions.size());
+    number[v.idx()] = static_cast<int>(repaired.mesh.positions.size());
     repaired.mesh.positions.push_back(vectorOf(surface.point(v)));
     repaired.vertexSource.push_back(sources.source[v]);
     repaired.vertexAdded.push_back(sources.added[v] ? 1 : 0);
@@ -731,7 +731,7 @@ RepairedMesh meshOf(const Surface& surface,
     int k = 0;
     for (VertexIndex v : CGAL::vertices_around_face(surface.halfedge(f), surface))
     {
-      tri[k] = number[v];
+      tri[k] = number[v.idx()];
       // An added vertex matches no input vertex (distinct negative values).
       corners[k] = sources.added[v] ? -1 - k : sources.source[v];
       ++k;
