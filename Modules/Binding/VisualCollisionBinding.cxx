@@ -391,6 +391,38 @@ void checkInputs(const TriangleMesh& visual,
   }
 }
 
+/// Candidates inside the visual edges of the triangles around `ring`: the
+/// closest point of each edge to `target`, away from the edge's ends (near
+/// an end the vertex serves: no sliver triangles).
+void addEdgePointCandidates(const TriangleMesh& visual,
+  const TriangleMeshAdjacency& visualAdjacency,
+  const std::vector<int>& ring,
+  const Vector3& target,
+  PairingClaim& claim)
+{
+  for (int w : ring)
+  {
+    for (const int* t = visualAdjacency.vertexTrianglesBegin(w);
+         t != visualAdjacency.vertexTrianglesEnd(w);
+         ++t)
+    {
+      const Triangle& tri = visual.triangles[*t];
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = std::min(tri[k], tri[(k + 1) % 3]);
+        const int b = std::max(tri[k], tri[(k + 1) % 3]);
+        const Vector3 d = visual.positions[b] - visual.positions[a];
+        const double along = d.dot(target - visual.positions[a]) / d.squaredNorm();
+        if (along > EdgePointMargin && along < 1.0 - EdgePointMargin)
+        {
+          const Vector3 x = visual.positions[a] + along * d;
+          claim.candidates.emplace_back((x - target).norm(), SurfacePoint::onEdge(a, b, along));
+        }
+      }
+    }
+  }
+}
+
 /// The claim of border collision vertex v on the visual rim (5.2.1): its
 /// candidates, closest first. Returns why it has none within reach, or an
 /// empty text.
@@ -450,28 +482,11 @@ std::string claimRimPoint(const TriangleMesh& visual,
   {
     claim.candidates.emplace_back(distance, SurfacePoint::atVertex(w));
   }
-  for (int w : ringNeighbourhood(visual, visualAdjacency, { nearest.front().second }, 1))
-  {
-    for (const int* t = visualAdjacency.vertexTrianglesBegin(w);
-         t != visualAdjacency.vertexTrianglesEnd(w);
-         ++t)
-    {
-      const Triangle& tri = visual.triangles[*t];
-      for (int k = 0; k < 3; ++k)
-      {
-        const int a = std::min(tri[k], tri[(k + 1) % 3]);
-        const int b = std::max(tri[k], tri[(k + 1) % 3]);
-        const Vector3 d = visual.positions[b] - visual.positions[a];
-        const double along = d.dot(target - visual.positions[a]) / d.squaredNorm();
-        // Near an end the vertex serves (no sliver triangles).
-        if (along > EdgePointMargin && along < 1.0 - EdgePointMargin)
-        {
-          const Vector3 x = visual.positions[a] + along * d;
-          claim.candidates.emplace_back((x - target).norm(), SurfacePoint::onEdge(a, b, along));
-        }
-      }
-    }
-  }
+  addEdgePointCandidates(visual,
+    visualAdjacency,
+    ringNeighbourhood(visual, visualAdjacency, { nearest.front().second }, 1),
+    target,
+    claim);
   std::stable_sort(claim.candidates.begin(),
     claim.candidates.end(),
     [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -531,6 +546,18 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         outward[b] += away.normalized();
       }
     }
+  }
+  // A paired vertex this close to where the normal meets the surface
+  // keeps the pairing on visual vertices: a quarter of the shortest
+  // collision edge at the vertex.
+  constexpr double SnapFraction = 0.25;
+  std::vector<double> snapDistance(n, std::numeric_limits<double>::infinity());
+  for (const auto& edge : topology.edges)
+  {
+    const double length =
+      SnapFraction * (collision.positions[edge[0]] - collision.positions[edge[1]]).norm();
+    snapDistance[edge[0]] = std::min(snapDistance[edge[0]], length);
+    snapDistance[edge[1]] = std::min(snapDistance[edge[1]], length);
   }
   std::vector<PairingClaim> claims(2 * n);
   std::vector<std::string> errors(2 * n);
@@ -601,6 +628,21 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
       for (const auto& [distance, w] : onSide)
       {
         claim.candidates.emplace_back(distance, SurfacePoint::atVertex(w));
+      }
+      // Where the visual mesh is coarse beside short collision edges
+      // (segmented anatomy, dense collision meshes), the nearest vertex
+      // can lie beyond a neighbour's path: the paired point then goes
+      // inside a visual edge next to where the normal meets the surface.
+      if (claim.candidates.empty() || claim.candidates.front().first > snapDistance[v])
+      {
+        addEdgePointCandidates(visual,
+          visualAdjacency,
+          { hit[0], hit[1], hit[2] },
+          origin + distance * direction,
+          claim);
+        std::stable_sort(claim.candidates.begin(),
+          claim.candidates.end(),
+          [](const auto& x, const auto& y) { return x.first < y.first; });
       }
     });
   for (const std::string& error : errors)

@@ -114,28 +114,50 @@ TEST(CollisionMeshGeneration, SteakAtTheThesisResolutions)
   EXPECT_NEAR(static_cast<double>(hexahedra.hexahedronCount()), 76.0, 76.0 * 0.1);
 }
 
-// A real meniscus segmented from MRI (../shared/data/knee-smith2019, in
+// The real menisci segmented from MRI (../shared/data/knee-smith2019, in
 // metres; skipped without it): the thesis's 105 collision vertices, the
-// generation and binding checks, in metres and in millimetres.
-TEST(CollisionMeshGeneration, RealMedialMeniscusInMetresAndMillimetres)
+// generation and binding checks, in metres and in millimetres. The lateral
+// one has collision edges shorter than the tissue is thick (median edge
+// 1.4 radii): its paired points once crossed a neighbour's path.
+TEST(CollisionMeshGeneration, RealMenisciInMetresAndMillimetres)
 {
   const std::string data = thintissue::testing::sharedDataDirectory();
-  const std::string path = data + "/knee-smith2019/smith2019-R-medial-meniscus.stl";
-  if (data.empty() || !std::filesystem::exists(path))
+  const std::string directory = data + "/knee-smith2019/";
+  if (data.empty() || !std::filesystem::exists(directory + "smith2019-R-medial-meniscus.stl"))
   {
     GTEST_SKIP() << "../shared/data/knee-smith2019 not present";
   }
-  TriangleMesh meniscus = readTriangleMesh(path);
+  for (const char* name : { "smith2019-R-medial-meniscus.stl", "smith2019-R-lateral-meniscus.stl" })
   {
-    SCOPED_TRACE("metres");
+    SCOPED_TRACE(name);
+    TriangleMesh meniscus = readTriangleMesh(directory + name);
+    {
+      SCOPED_TRACE("metres");
+      checkGenerated(meniscus, 105, 0.5);
+    }
+    for (Vector3& x : meniscus.positions)
+    {
+      x *= 1000.0;
+    }
+    SCOPED_TRACE("millimetres");
     checkGenerated(meniscus, 105, 0.5);
   }
-  for (Vector3& x : meniscus.positions)
+}
+
+// A collision mesh dense for its visual mesh (the procedural meniscus's
+// 2,874 visual vertices under 240 and 400 collision vertices): the visual
+// vertex nearest a collision vertex's normal can lie beyond a neighbour's
+// path, and the paths crossed ("paths 398 and 646 cross inside triangle
+// 1491"); the paired point is now taken inside a visual edge beside where
+// the normal meets the surface.
+TEST(CollisionMeshGeneration, DenseCollisionMeshOnACoarseVisualMesh)
+{
+  const MeniscusModel meniscus = makeMeniscus();
+  for (int vertices : { 240, 400 })
   {
-    x *= 1000.0;
+    SCOPED_TRACE(vertices);
+    checkGenerated(meniscus.visual, vertices, 0.5);
   }
-  SCOPED_TRACE("millimetres");
-  checkGenerated(meniscus, 105, 0.5);
 }
 
 TEST(CollisionMeshGeneration, SheetAndMeniscus)
