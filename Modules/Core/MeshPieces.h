@@ -1,0 +1,63 @@
+// The connected pieces of a triangle surface: a segmentation often holds
+// several tissues (both menisci in one file) and fragments of noise, and
+// each tissue must be prepared on its own (a collision mid-surface spanning
+// two menisci would bind one to the other).
+//
+// Triangles are in one piece when a chain of shared edges joins them. Two
+// tissues that only touch at a vertex (a bow-tie, as marching cubes leaves
+// where two labels touch) stay two pieces: the shared vertex is copied into
+// each. Pieces are sorted by surface area, largest first; a piece is a
+// fragment when its area is below a fraction of the largest piece's.
+#ifndef MeshPieces_h
+#define MeshPieces_h
+
+#include "ThinTissueCoreModule.h"
+#include "TriangleMesh.h"
+
+#include <string>
+#include <vector>
+
+namespace thintissue
+{
+
+struct MeshPiece
+{
+  /// The piece as a mesh of its own (normals, texture, point attributes
+  /// kept), named "<mesh name> piece <number>".
+  TriangleMesh mesh;
+  /// 1 for the largest piece, 2 for the next, ...
+  int number = 0;
+  /// Per vertex of `mesh`: its index in the input mesh.
+  std::vector<int> originalVertices;
+  double area = 0.0;
+  /// Area-weighted centre of the surface.
+  Vector3 centre = Vector3::Zero();
+  /// Largest side of the bounding box.
+  double largestExtent = 0.0;
+
+  /// "piece 3: 24 vertices, 44 triangles, area 0.31, centre (1.2, 3.4, 5.6)".
+  std::string description() const;
+};
+
+/// How many pieces `mesh` has (without copying them).
+THINTISSUECORE_EXPORT std::size_t countPieces(const TriangleMesh& mesh);
+
+/// The pieces of `mesh`, largest area first; a mesh without triangles has
+/// none. Vertices used by no triangle are left out.
+THINTISSUECORE_EXPORT std::vector<MeshPiece> splitIntoPieces(const TriangleMesh& mesh);
+
+struct PieceSelection
+{
+  std::vector<MeshPiece> kept;
+  /// Fragments: area below minimumFraction times the largest piece's area.
+  std::vector<MeshPiece> dropped;
+};
+
+/// Splits `mesh` and sorts its pieces into kept and dropped (fragments).
+/// `minimumFraction` in [0, 1]: 0 keeps every piece. Throws
+/// InvalidInputError for a fraction outside [0, 1].
+THINTISSUECORE_EXPORT PieceSelection selectPieces(const TriangleMesh& mesh, double minimumFraction);
+
+} // namespace thintissue
+
+#endif
