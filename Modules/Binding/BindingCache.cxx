@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <type_traits>
 
 namespace thintissue
@@ -271,8 +272,7 @@ std::uint64_t bindingInputChecksum(const TriangleMesh& visual,
   return sum.value();
 }
 
-void writeBindingCache(const std::string& path,
-  const VisualCollisionBinding& binding,
+std::string bindingCacheBytes(const VisualCollisionBinding& binding,
   std::uint64_t inputChecksum,
   const HexahedralMesh* simulation,
   const std::string& metadata)
@@ -323,17 +323,30 @@ void writeBindingCache(const std::string& path,
   header.payloadSize = payload.Bytes.size();
   header.payloadChecksum = content.value();
 
+  std::string bytes(reinterpret_cast<const char*>(&header), sizeof(header));
+  bytes.append(payload.Bytes.data(), payload.Bytes.size());
+  return bytes;
+}
+
+void writeBindingCache(const std::string& path,
+  const VisualCollisionBinding& binding,
+  std::uint64_t inputChecksum,
+  const HexahedralMesh* simulation,
+  const std::string& metadata)
+{
+  const std::string bytes = bindingCacheBytes(binding, inputChecksum, simulation, metadata);
   writeFileAtomically(path,
     [&](std::ostream& out)
-    {
-      out.write(reinterpret_cast<const char*>(&header), sizeof(header));
-      out.write(payload.Bytes.data(), static_cast<std::streamsize>(payload.Bytes.size()));
-    });
+    { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
 }
 
 namespace
 {
+/// The content of a binding file (`path` names it in messages) read from
+/// `in`, a stream of `fileSize` bytes positioned at its start.
 std::optional<BindingCacheContents> readContents(const std::string& path,
+  std::istream& in,
+  std::uintmax_t fileSize,
   const std::uint64_t* expectedInputChecksum,
   std::string* whyNot,
   std::uint64_t* inputChecksum)
@@ -346,11 +359,6 @@ std::optional<BindingCacheContents> readContents(const std::string& path,
     }
     return std::nullopt;
   };
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path))
-  {
-    return refuse("missing");
-  }
   FileHeader header{};
   if (!in.read(reinterpret_cast<char*>(&header), sizeof(header)) ||
       std::memcmp(header.magic, Magic, sizeof(Magic)) != 0)
@@ -370,7 +378,6 @@ std::optional<BindingCacheContents> readContents(const std::string& path,
   {
     return refuse("stale: made from other meshes or settings");
   }
-  const auto fileSize = std::filesystem::file_size(path);
   if (header.payloadSize != fileSize - sizeof(header))
   {
     return refuse("damaged: " + std::to_string(fileSize) + " bytes where the header announces " +
@@ -457,20 +464,48 @@ std::optional<BindingCacheContents> readContents(const std::string& path,
   }
 }
 
+/// readContents on the file `path`.
+std::optional<BindingCacheContents> readContentsOfFile(const std::string& path,
+  const std::uint64_t* expectedInputChecksum,
+  std::string* whyNot,
+  std::uint64_t* inputChecksum)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path))
+  {
+    if (whyNot != nullptr)
+    {
+      *whyNot = "binding file '" + path + "': missing";
+    }
+    return std::nullopt;
+  }
+  return readContents(
+    path, in, std::filesystem::file_size(path), expectedInputChecksum, whyNot, inputChecksum);
+}
+
 } // namespace
 
 std::optional<BindingCacheContents> readBindingCache(const std::string& path,
   std::uint64_t expectedInputChecksum,
   std::string* whyNot)
 {
-  return readContents(path, &expectedInputChecksum, whyNot, nullptr);
+  return readContentsOfFile(path, &expectedInputChecksum, whyNot, nullptr);
 }
 
 std::optional<BindingCacheContents> readBindingFile(const std::string& path,
   std::string* whyNot,
   std::uint64_t* inputChecksum)
 {
-  return readContents(path, nullptr, whyNot, inputChecksum);
+  return readContentsOfFile(path, nullptr, whyNot, inputChecksum);
+}
+
+std::optional<BindingCacheContents> readBindingBytes(const std::string& bytes,
+  const std::string& name,
+  std::string* whyNot,
+  std::uint64_t* inputChecksum)
+{
+  std::istringstream in(bytes);
+  return readContents(name, in, bytes.size(), nullptr, whyNot, inputChecksum);
 }
 
 VisualCollisionBinding loadOrBuildBinding(const std::string& cachePath,

@@ -47,6 +47,13 @@ THINTISSUEBINDING_EXPORT void writeBindingCache(const std::string& path,
   const HexahedralMesh* simulation = nullptr,
   const std::string& metadata = {});
 
+/// The bytes writeBindingCache writes (a whole binding file), for files
+/// that hold several bindings (TissueBundle.h: a bundle of several tissues).
+THINTISSUEBINDING_EXPORT std::string bindingCacheBytes(const VisualCollisionBinding& binding,
+  std::uint64_t inputChecksum,
+  const HexahedralMesh* simulation = nullptr,
+  const std::string& metadata = {});
+
 /// Reads a binding file. Returns nothing, with the reason in `whyNot`, when
 /// the file is missing, of another format version, made from other inputs
 /// than `expectedInputChecksum`, or damaged (truncated, content checksum
@@ -61,6 +68,14 @@ THINTISSUEBINDING_EXPORT std::optional<BindingCacheContents> readBindingCache(
 /// file, with the reason in `whyNot`. `inputChecksum` receives the file's.
 THINTISSUEBINDING_EXPORT std::optional<BindingCacheContents> readBindingFile(
   const std::string& path,
+  std::string* whyNot = nullptr,
+  std::uint64_t* inputChecksum = nullptr);
+
+/// readBindingFile on the bytes of a binding file held in memory (as
+/// bindingCacheBytes makes them); `name` stands for the file in `whyNot`.
+THINTISSUEBINDING_EXPORT std::optional<BindingCacheContents> readBindingBytes(
+  const std::string& bytes,
+  const std::string& name,
   std::string* whyNot = nullptr,
   std::uint64_t* inputChecksum = nullptr);
 
