@@ -115,6 +115,7 @@ public:
     return Centre + q.x() * U + q.y() * V + height * N;
   }
   const Vector2& low() const { return Low; }
+  const Vector3& axis() const { return N; }
   const Vector2& extent() const { return Extent; }
 
   /// Heights (along n) of the first and last crossing of the line through
@@ -169,9 +170,54 @@ void checkVisual(const TriangleMesh& visual)
   requireClosedOrientedManifold(visual, nameOf(visual));
 }
 
-/// Longest loop of silhouette edges (between triangles facing +n and the
-/// others), in (u, v), counter-clockwise.
-std::vector<Vector2> silhouetteOutline(const TriangleMesh& mesh,
+using Loop = std::vector<Vector2>;
+
+/// Twice the signed area of a closed polygon (positive counter-clockwise).
+double signedArea(const Loop& polygon)
+{
+  double area = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+  {
+    const Vector2& a = polygon[i];
+    const Vector2& b = polygon[(i + 1) % polygon.size()];
+    area += a.x() * b.y() - a.y() * b.x();
+  }
+  return area;
+}
+
+/// The polygon of a loop of mesh vertices projected, points that project
+/// onto each other (a vertical edge on the silhouette, the two ends of a
+/// wall's corner) merged.
+Loop projectedLoop(const TriangleMesh& mesh,
+  const ProjectedSurface& surface,
+  const std::vector<int>& loop)
+{
+  Loop points;
+  double length = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    points.push_back(surface.project(mesh.positions[loop[i]]));
+    length += i > 0 ? (points[i] - points[i - 1]).norm() : 0.0;
+  }
+  Loop merged;
+  for (const Vector2& q : points)
+  {
+    if (merged.empty() || (q - merged.back()).norm() > 1e-6 * length)
+    {
+      merged.push_back(q);
+    }
+  }
+  while (merged.size() > 1 && (merged.front() - merged.back()).norm() <= 1e-6 * length)
+  {
+    merged.pop_back();
+  }
+  return merged;
+}
+
+/// Closed loops of silhouette edges (between triangles facing +n and -n),
+/// projected along n: the outline of the shadow and of its holes (the gap
+/// of a tear through the thickness), and the folds of the surface.
+std::vector<Loop> silhouetteLoops(const TriangleMesh& mesh,
   const ProjectedSurface& surface,
   const Vector3& n)
 {
@@ -188,12 +234,8 @@ std::vector<Vector2> silhouetteOutline(const TriangleMesh& mesh,
   std::vector<int> silhouette;
   for (int e = 0; e < static_cast<int>(adjacency.edgeCount()); ++e)
   {
-    if (adjacency.edgeTriangleCount(e) != 2)
-    {
-      continue;
-    }
     const int* t = adjacency.edgeTrianglesBegin(e);
-    if (facingUp[t[0]] != facingUp[t[1]])
+    if (adjacency.edgeTriangleCount(e) == 2 && facingUp[t[0]] != facingUp[t[1]])
     {
       silhouette.push_back(e);
       edgesOfVertex[adjacency.edge(e)[0]].push_back(e);
@@ -201,91 +243,37 @@ std::vector<Vector2> silhouetteOutline(const TriangleMesh& mesh,
     }
   }
   std::vector<char> used(adjacency.edgeCount(), 0);
-  std::vector<Vector2> best;
-  double bestLength = 0.0;
+  std::vector<Loop> loops;
   for (int first : silhouette)
   {
     if (used[first])
     {
       continue;
     }
-    std::vector<int> loop;
-    const int start = adjacency.edge(first)[0];
-    int vertex = adjacency.edge(first)[1];
     used[first] = 1;
-    loop.push_back(start);
-    bool closed = false;
-    while (true)
+    const int start = adjacency.edge(first)[0];
+    std::vector<int> loop{ start };
+    int vertex = adjacency.edge(first)[1];
+    while (vertex != start)
     {
       loop.push_back(vertex);
-      if (vertex == start)
-      {
-        closed = true;
-        break;
-      }
-      int next = -1;
-      for (int e : edgesOfVertex[vertex])
-      {
-        if (!used[e])
-        {
-          next = e;
-          break;
-        }
-      }
-      if (next < 0)
+      const auto next = std::find_if(edgesOfVertex[vertex].begin(),
+        edgesOfVertex[vertex].end(),
+        [&](int e) { return !used[e]; });
+      if (next == edgesOfVertex[vertex].end())
       {
         break;
       }
-      used[next] = 1;
-      vertex =
-        adjacency.edge(next)[0] == vertex ? adjacency.edge(next)[1] : adjacency.edge(next)[0];
+      used[*next] = 1;
+      const auto& ends = adjacency.edge(*next);
+      vertex = ends[0] == vertex ? ends[1] : ends[0];
     }
-    if (!closed || loop.size() < 4)
+    if (vertex == start && loop.size() >= 3)
     {
-      continue;
-    }
-    loop.pop_back();
-    std::vector<Vector2> points;
-    double length = 0.0;
-    for (std::size_t i = 0; i < loop.size(); ++i)
-    {
-      points.push_back(surface.project(mesh.positions[loop[i]]));
-      if (i > 0)
-      {
-        length += (points[i] - points[i - 1]).norm();
-      }
-    }
-    if (length > bestLength)
-    {
-      bestLength = length;
-      // Points that project onto each other (a vertical edge on the
-      // silhouette, the two ends of a wall's corner) are one.
-      best.clear();
-      for (const Vector2& q : points)
-      {
-        if (best.empty() || (q - best.back()).norm() > 1e-6 * length)
-        {
-          best.push_back(q);
-        }
-      }
-      while (best.size() > 1 && (best.front() - best.back()).norm() <= 1e-6 * length)
-      {
-        best.pop_back();
-      }
+      loops.push_back(projectedLoop(mesh, surface, loop));
     }
   }
-  double area = 0.0;
-  for (std::size_t i = 0; i < best.size(); ++i)
-  {
-    const Vector2& a = best[i];
-    const Vector2& b = best[(i + 1) % best.size()];
-    area += a.x() * b.y() - a.y() * b.x();
-  }
-  if (area < 0.0)
-  {
-    std::reverse(best.begin(), best.end());
-  }
-  return best;
+  return loops;
 }
 
 /// Whether two segments of the closed polygon that share no end cross.
@@ -311,24 +299,32 @@ bool crossesItself(const std::vector<Vector2>& polygon)
   return false;
 }
 
-/// The outline of the surface's shadow along the axis (counter-clockwise,
-/// holes filled): the projected triangles rasterized at a 256th of the
-/// extent, closed by one cell, the largest piece's border traced and
-/// smoothed. For a rough surface (a segmentation's staircase), whose
-/// silhouette edges wander over the step walls and may cross themselves.
-std::vector<Vector2> shadowOutline(const TriangleMesh& mesh, const ProjectedSurface& surface)
+/// A raster of the surface's shadow along the axis: cells of a 256th of
+/// the extent, 1 where a projected triangle covers the cell's centre.
+struct ShadowRaster
 {
-  const double cell = std::max(surface.extent().x(), surface.extent().y()) / 256.0;
-  const Vector2 origin = surface.low() - Vector2(3.0 * cell, 3.0 * cell);
-  const int width = static_cast<int>(std::ceil(surface.extent().x() / cell)) + 7;
-  const int height = static_cast<int>(std::ceil(surface.extent().y() / cell)) + 7;
-  std::vector<char> inside(static_cast<std::size_t>(width) * height, 0);
-  auto at = [width](int i, int j) { return static_cast<std::size_t>(j) * width + i; };
+  double cell = 1.0;
+  Vector2 origin = Vector2::Zero();
+  int width = 0;
+  int height = 0;
+  std::vector<char> inside;
+
+  std::size_t at(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
+};
+
+ShadowRaster rasterizeShadow(const TriangleMesh& mesh, const ProjectedSurface& surface)
+{
+  ShadowRaster r;
+  r.cell = std::max(surface.extent().x(), surface.extent().y()) / 256.0;
+  r.origin = surface.low() - Vector2(3.0 * r.cell, 3.0 * r.cell);
+  r.width = static_cast<int>(std::ceil(surface.extent().x() / r.cell)) + 7;
+  r.height = static_cast<int>(std::ceil(surface.extent().y() / r.cell)) + 7;
+  r.inside.assign(static_cast<std::size_t>(r.width) * r.height, 0);
   for (const Triangle& t : mesh.triangles)
   {
-    const Vector2 a = (surface.project(mesh.positions[t[0]]) - origin) / cell;
-    const Vector2 b = (surface.project(mesh.positions[t[1]]) - origin) / cell;
-    const Vector2 c = (surface.project(mesh.positions[t[2]]) - origin) / cell;
+    const Vector2 a = (surface.project(mesh.positions[t[0]]) - r.origin) / r.cell;
+    const Vector2 b = (surface.project(mesh.positions[t[1]]) - r.origin) / r.cell;
+    const Vector2 c = (surface.project(mesh.positions[t[2]]) - r.origin) / r.cell;
     const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
     if (std::abs(area) < 1e-12)
       continue;
@@ -340,89 +336,138 @@ std::vector<Vector2> shadowOutline(const TriangleMesh& mesh, const ProjectedSurf
         const double u = ((b - q).x() * (c - q).y() - (b - q).y() * (c - q).x()) / area;
         const double v = ((c - q).x() * (a - q).y() - (c - q).y() * (a - q).x()) / area;
         if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
-          inside[at(i, j)] = 1;
+          r.inside[r.at(i, j)] = 1;
       }
   }
-  // Closing by one cell (pinholes between projected triangles), then the
-  // outside found from the grid's border: what it does not reach is inside.
-  auto dilate = [&](const std::vector<char>& from, char value)
+  return r;
+}
+
+/// The raster closed by one cell: dilated, then eroded.
+std::vector<char> closeByOneCell(const ShadowRaster& r)
+{
+  auto dilate = [&r](const std::vector<char>& from, char value)
   {
     std::vector<char> to(from);
-    for (int j = 1; j + 1 < height; ++j)
-      for (int i = 1; i + 1 < width; ++i)
-        if (from[at(i, j)] != value)
+    for (int j = 1; j + 1 < r.height; ++j)
+      for (int i = 1; i + 1 < r.width; ++i)
+        if (from[r.at(i, j)] != value)
           for (int dj = -1; dj <= 1; ++dj)
             for (int di = -1; di <= 1; ++di)
-              if (from[at(i + di, j + dj)] == value)
-                to[at(i, j)] = value;
+              if (from[r.at(i + di, j + dj)] == value)
+                to[r.at(i, j)] = value;
     return to;
   };
-  inside = dilate(dilate(inside, 1), 0);
-  std::vector<char> outside(inside.size(), 0);
-  std::vector<std::pair<int, int>> stack{ { 0, 0 } };
-  outside[0] = 1;
-  while (!stack.empty())
-  {
-    const auto [i, j] = stack.back();
-    stack.pop_back();
-    const int next[4][2] = { { i + 1, j }, { i - 1, j }, { i, j + 1 }, { i, j - 1 } };
-    for (const auto& [x, y] : next)
-      if (x >= 0 && y >= 0 && x < width && y < height && !inside[at(x, y)] && !outside[at(x, y)])
-      {
-        outside[at(x, y)] = 1;
-        stack.emplace_back(x, y);
-      }
-  }
-  // Border edges with the inside on their left, corner to corner.
-  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> next;
-  for (int j = 1; j + 1 < height; ++j)
-    for (int i = 1; i + 1 < width; ++i)
+  return dilate(dilate(r.inside, 1), 0);
+}
+
+/// Connected pieces (4-neighbours) of the empty cells: 0 is the outside
+/// (reached from the raster's border), 1, 2, ... the holes; -1 on tissue.
+std::vector<int> emptyPieces(const ShadowRaster& r, std::vector<int>& cellCounts)
+{
+  std::vector<int> piece(r.inside.size(), -1);
+  cellCounts.clear();
+  std::vector<std::pair<int, int>> stack;
+  for (int j0 = 0; j0 < r.height; ++j0)
+    for (int i0 = 0; i0 < r.width; ++i0)
     {
-      if (outside[at(i, j)])
+      if (r.inside[r.at(i0, j0)] || piece[r.at(i0, j0)] >= 0)
         continue;
-      if (outside[at(i, j - 1)])
+      const int label = static_cast<int>(cellCounts.size());
+      cellCounts.push_back(1);
+      piece[r.at(i0, j0)] = label;
+      stack.assign(1, { i0, j0 });
+      while (!stack.empty())
+      {
+        const auto [i, j] = stack.back();
+        stack.pop_back();
+        const int next[4][2] = { { i + 1, j }, { i - 1, j }, { i, j + 1 }, { i, j - 1 } };
+        for (const auto& [x, y] : next)
+          if (x >= 0 && y >= 0 && x < r.width && y < r.height && !r.inside[r.at(x, y)] &&
+              piece[r.at(x, y)] < 0)
+          {
+            piece[r.at(x, y)] = label;
+            ++cellCounts[label];
+            stack.emplace_back(x, y);
+          }
+      }
+    }
+  return piece;
+}
+
+/// The loops between tissue cells and `empty` cells, tissue on the left
+/// (the outline counter-clockwise, holes clockwise), corner to corner,
+/// smoothed a little (the staircase of the cells).
+std::vector<Loop> traceCellBorders(const ShadowRaster& r, const std::vector<char>& empty)
+{
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> next;
+  for (int j = 1; j + 1 < r.height; ++j)
+    for (int i = 1; i + 1 < r.width; ++i)
+    {
+      if (empty[r.at(i, j)])
+        continue;
+      if (empty[r.at(i, j - 1)])
         next[{ i, j }].push_back({ i + 1, j });
-      if (outside[at(i + 1, j)])
+      if (empty[r.at(i + 1, j)])
         next[{ i + 1, j }].push_back({ i + 1, j + 1 });
-      if (outside[at(i, j + 1)])
+      if (empty[r.at(i, j + 1)])
         next[{ i + 1, j + 1 }].push_back({ i, j + 1 });
-      if (outside[at(i - 1, j)])
+      if (empty[r.at(i - 1, j)])
         next[{ i, j + 1 }].push_back({ i, j });
     }
-  std::vector<Vector2> best;
+  std::vector<Loop> loops;
   while (!next.empty())
   {
-    std::vector<std::pair<int, int>> loop{ next.begin()->first };
+    std::vector<std::pair<int, int>> corners{ next.begin()->first };
     while (true)
     {
-      auto found = next.find(loop.back());
+      auto found = next.find(corners.back());
       if (found == next.end() || found->second.empty())
         break;
       const std::pair<int, int> to = found->second.back();
       found->second.pop_back();
       if (found->second.empty())
         next.erase(found);
-      if (to == loop.front())
+      if (to == corners.front())
         break;
-      loop.push_back(to);
+      corners.push_back(to);
     }
-    if (loop.size() > best.size())
+    Loop loop;
+    for (const auto& [i, j] : corners)
+      loop.push_back(r.origin + r.cell * Vector2(i, j));
+    for (int pass = 0; pass < 3; ++pass)
     {
-      best.clear();
-      for (const auto& [i, j] : loop)
-        best.push_back(origin + cell * Vector2(i, j));
+      Loop smooth(loop.size());
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        smooth[k] = 0.25 * loop[(k + loop.size() - 1) % loop.size()] + 0.5 * loop[k] +
+                    0.25 * loop[(k + 1) % loop.size()];
+      loop = std::move(smooth);
     }
+    loops.push_back(std::move(loop));
   }
-  // Smoothed a little (the staircase of the cells), counter-clockwise.
-  for (int pass = 0; pass < 3; ++pass)
-  {
-    std::vector<Vector2> smooth(best.size());
-    for (std::size_t k = 0; k < best.size(); ++k)
-      smooth[k] = 0.25 * best[(k + best.size() - 1) % best.size()] + 0.5 * best[k] +
-                  0.25 * best[(k + 1) % best.size()];
-    best = std::move(smooth);
-  }
-  return best;
+  return loops;
+}
+
+/// The loops of the surface's shadow along the axis, from its raster: for
+/// a rough surface (a segmentation's staircase), whose silhouette edges
+/// wander over the step walls and may cross themselves. Holes of fewer
+/// than 16 cells are filled (gaps between the steps, not tears).
+std::vector<Loop> shadowLoops(const TriangleMesh& mesh, const ProjectedSurface& surface)
+{
+  const ShadowRaster raster = rasterizeShadow(mesh, surface);
+  std::vector<int> cellCounts;
+  const std::vector<int> piece = emptyPieces(raster, cellCounts);
+  // The outside closed by one cell (pinholes between projected triangles,
+  // the staircase's notches); the holes not (a tear's gap narrows to
+  // nothing at its ends, and its hole must reach them).
+  ShadowRaster closed = raster;
+  closed.inside = closeByOneCell(raster);
+  std::vector<int> closedCounts;
+  const std::vector<int> closedPiece = emptyPieces(closed, closedCounts);
+  constexpr int SmallestHole = 16;
+  std::vector<char> empty(piece.size(), 0);
+  for (std::size_t c = 0; c < piece.size(); ++c)
+    empty[c] = closedPiece[c] == 0 || (piece[c] > 0 && cellCounts[piece[c]] >= SmallestHole);
+  return traceCellBorders(raster, empty);
 }
 
 std::vector<Vector2> resampleEvenly(const std::vector<Vector2>& polygon, int count);
@@ -572,13 +617,40 @@ double distanceToPolygon(const std::vector<Vector2>& polygon, const Vector2& q)
   return best;
 }
 
-/// Points of a triangular lattice of spacing h inside the polygon, at least
-/// `margin` from its edges, nearest the polygon last.
-std::vector<Vector2> latticeInside(const std::vector<Vector2>& polygon, double h, double margin)
+/// Points of a triangular lattice of spacing h inside the outline and out
+/// of its holes (loops[0] and the rest), at least `margin` from their
+/// edges, nearest the edges last; with `tissue`, only where the line along
+/// the axis meets the surface (not in the closed ends of a tear's gap).
+/// Inside the region of an outline and its holes (inside an odd number of
+/// its loops).
+bool insideLoops(const std::vector<Loop>& loops, const Vector2& q)
+{
+  bool inside = false;
+  for (const Loop& loop : loops)
+  {
+    inside = insidePolygon(loop, q) ? !inside : inside;
+  }
+  return inside;
+}
+
+double distanceToLoops(const std::vector<Loop>& loops, const Vector2& q)
+{
+  double best = Infinity;
+  for (const Loop& loop : loops)
+  {
+    best = std::min(best, distanceToPolygon(loop, q));
+  }
+  return best;
+}
+
+std::vector<Vector2> latticeInside(const std::vector<Loop>& loops,
+  double h,
+  double margin,
+  const ProjectedSurface* tissue = nullptr)
 {
   Vector2 low(Infinity, Infinity);
   Vector2 high(-Infinity, -Infinity);
-  for (const Vector2& p : polygon)
+  for (const Vector2& p : loops.front())
   {
     low = low.cwiseMin(p);
     high = high.cwiseMax(p);
@@ -596,12 +668,14 @@ std::vector<Vector2> latticeInside(const std::vector<Vector2>& polygon, double h
     for (int i = 0; i <= columns; ++i)
     {
       const Vector2 q(low.x() + (i + (j % 2 ? 0.5 : 0.0)) * h, low.y() + j * rowHeight);
-      if (!insidePolygon(polygon, q))
+      if (!insideLoops(loops, q))
       {
         continue;
       }
-      const double d = distanceToPolygon(polygon, q);
-      if (d >= margin)
+      const double d = distanceToLoops(loops, q);
+      double bottom = 0.0;
+      double top = 0.0;
+      if (d >= margin && (tissue == nullptr || tissue->crossing(q, bottom, top)))
       {
         points.emplace_back(d, q);
       }
@@ -777,26 +851,33 @@ std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
   return border;
 }
 
-/// At least `interiorCount` lattice points inside the border (the largest
+/// At least `interiorCount` lattice points inside the borders (the largest
 /// spacing that gives them, by bisection), kept off the border; fewer if
 /// none fits.
-std::vector<Vector2> interiorLattice(const std::vector<Vector2>& border,
+std::vector<Vector2> interiorLattice(const ProjectedSurface& surface,
+  const std::vector<Loop>& borders,
   int interiorCount,
   double extent)
 {
   double perimeter = 0.0;
-  for (std::size_t i = 0; i < border.size(); ++i)
+  std::size_t count = 0;
+  for (const Loop& border : borders)
   {
-    perimeter += (border[(i + 1) % border.size()] - border[i]).norm();
+    for (std::size_t i = 0; i < border.size(); ++i)
+    {
+      perimeter += (border[(i + 1) % border.size()] - border[i]).norm();
+    }
+    count += border.size();
   }
-  const double borderSpacing = perimeter / static_cast<double>(border.size());
+  const double borderSpacing = perimeter / static_cast<double>(count);
   double small = 1e-3 * extent;
   double large = extent;
   std::vector<Vector2> interior;
   for (int iteration = 0; iteration < 60; ++iteration)
   {
     const double h = std::sqrt(small * large);
-    std::vector<Vector2> points = latticeInside(border, h, 0.45 * std::min(h, borderSpacing));
+    std::vector<Vector2> points =
+      latticeInside(borders, h, 0.45 * std::min(h, borderSpacing), &surface);
     if (static_cast<int>(points.size()) >= interiorCount)
     {
       small = h;
@@ -814,14 +895,14 @@ std::vector<Vector2> interiorLattice(const std::vector<Vector2>& border,
   return interior;
 }
 
-/// Constrained Delaunay triangulation (CGAL) of `points`, whose first
-/// `borderCount` are the border loop in order, keeping the triangles
-/// inside it, with chords between border vertices flipped to inner ones.
+/// Constrained Delaunay triangulation (CGAL) of `points`, whose first ones
+/// are the border loops in order (`borders`: the outline, then the
+/// holes), keeping the triangles inside the outline and out of the holes,
+/// with chords between border vertices flipped to inner ones.
 std::vector<Triangle> triangulateInside(const std::vector<Vector2>& points,
-  std::size_t borderCount,
+  const std::vector<Loop>& borders,
   const std::string& name)
 {
-  const std::vector<Vector2> border(points.begin(), points.begin() + borderCount);
   Triangulation triangulation;
   std::vector<Triangulation::Vertex_handle> handles;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -830,9 +911,14 @@ std::vector<Triangle> triangulateInside(const std::vector<Vector2>& points,
     handle->info() = static_cast<int>(i);
     handles.push_back(handle);
   }
-  for (std::size_t i = 0; i < borderCount; ++i)
+  std::size_t first = 0;
+  for (const Loop& border : borders)
   {
-    triangulation.insert_constraint(handles[i], handles[(i + 1) % borderCount]);
+    for (std::size_t i = 0; i < border.size(); ++i)
+    {
+      triangulation.insert_constraint(handles[first + i], handles[first + (i + 1) % border.size()]);
+    }
+    first += border.size();
   }
   std::vector<Triangle> triangles;
   for (auto face = triangulation.finite_faces_begin(); face != triangulation.finite_faces_end();
@@ -849,17 +935,191 @@ std::vector<Triangle> triangulateInside(const std::vector<Vector2>& points,
       }
       centroid += points[t[k]] / 3.0;
     }
-    if (insidePolygon(border, centroid))
+    if (insideLoops(borders, centroid))
     {
       triangles.push_back(t);
     }
   }
-  flipBorderChords(triangles, points, static_cast<int>(borderCount));
+  flipBorderChords(triangles, points, static_cast<int>(first));
   if (triangulation.number_of_vertices() != points.size())
   {
     throw InvalidInputError(name + ": collision vertices coincide (outline too tight)");
   }
   return triangles;
+}
+
+/// Whether the surface is missing just inside the loop (a hole of the
+/// shadow: the gap of a tear through the thickness, not a fold of the
+/// surface), seen `step` beside the middle of each of its edges.
+bool enclosesNoTissue(const ProjectedSurface& surface, const Loop& loop, double step)
+{
+  const double turn = signedArea(loop) > 0.0 ? 1.0 : -1.0;
+  int empty = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    const Vector2 along = loop[(i + 1) % loop.size()] - loop[i];
+    if (along.norm() <= 0.0)
+    {
+      continue;
+    }
+    const Vector2 left = turn * Vector2(-along.y(), along.x()).normalized();
+    double middle = 0.0;
+    empty += halfThicknessAt(surface, loop[i] + 0.5 * along + step * left, middle) < 0.0 ? 1 : 0;
+  }
+  return 2 * empty > static_cast<int>(loop.size());
+}
+
+double perimeterOf(const Loop& loop)
+{
+  double length = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    length += (loop[(i + 1) % loop.size()] - loop[i]).norm();
+  }
+  return length;
+}
+
+/// The outline among the loops (the longest, made counter-clockwise) and
+/// its holes (loops inside it, at least a 50th of its length, around no
+/// tissue; made clockwise): tissue lies on the left of every loop. Empty
+/// when no loop has three points; `tangled` when a hole crosses itself.
+std::vector<Loop> outlineAndHoles(std::vector<Loop> loops,
+  const ProjectedSurface& surface,
+  double extent,
+  bool& tangled)
+{
+  tangled = false;
+  std::stable_sort(loops.begin(),
+    loops.end(),
+    [](const Loop& a, const Loop& b) { return perimeterOf(a) > perimeterOf(b); });
+  if (loops.empty() || loops.front().size() < 3)
+  {
+    return {};
+  }
+  std::vector<Loop> result{ loops.front() };
+  if (signedArea(result.front()) < 0.0)
+  {
+    std::reverse(result.front().begin(), result.front().end());
+  }
+  const double outline = perimeterOf(result.front());
+  for (std::size_t k = 1; k < loops.size(); ++k)
+  {
+    Loop& hole = loops[k];
+    const bool inside = std::all_of(
+      hole.begin(), hole.end(), [&](const Vector2& q) { return insidePolygon(result.front(), q); });
+    if (hole.size() < 3 || perimeterOf(hole) < outline / 50.0 || !inside ||
+        !enclosesNoTissue(surface, hole, 1e-3 * extent))
+    {
+      continue;
+    }
+    if (crossesItself(hole))
+    {
+      tangled = true;
+      continue;
+    }
+    if (signedArea(hole) > 0.0)
+    {
+      std::reverse(hole.begin(), hole.end());
+    }
+    result.push_back(std::move(hole));
+  }
+  return result;
+}
+
+/// Border points per loop: `total` shared out by length, at least 4 on a
+/// hole (the outline keeps the rest).
+std::vector<int> borderCountsOf(const std::vector<Loop>& loops, int total)
+{
+  double perimeter = 0.0;
+  for (const Loop& loop : loops)
+  {
+    perimeter += perimeterOf(loop);
+  }
+  std::vector<int> counts(loops.size(), 0);
+  int holes = 0;
+  for (std::size_t k = 1; k < loops.size(); ++k)
+  {
+    counts[k] =
+      std::max(4, static_cast<int>(std::lround(total * perimeterOf(loops[k]) / perimeter)));
+    holes += counts[k];
+  }
+  counts[0] = total - holes;
+  return counts;
+}
+
+/// The thickness axis (least spread of the area: triangle centres, area
+/// weighted) and two axes across it, about the area's centre.
+ProjectedSurface projectionAlongThickness(const TriangleMesh& visual)
+{
+  double area = 0.0;
+  Vector3 centre = Vector3::Zero();
+  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+  {
+    const Triangle& c = visual.triangles[t];
+    const double a = visual.triangleArea(t);
+    area += a;
+    centre += a * (visual.positions[c[0]] + visual.positions[c[1]] + visual.positions[c[2]]) / 3.0;
+  }
+  centre /= area;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+  {
+    const Triangle& c = visual.triangles[t];
+    const Vector3 d =
+      (visual.positions[c[0]] + visual.positions[c[1]] + visual.positions[c[2]]) / 3.0 - centre;
+    covariance += visual.triangleArea(t) * d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axes(covariance);
+  const Vector3 n = axes.eigenvectors().col(0).normalized();
+  const Vector3 u = axes.eigenvectors().col(2).normalized();
+  return ProjectedSurface(visual, centre, u, n.cross(u), n);
+}
+
+/// The outline and holes seen along the axis: from the silhouette edges,
+/// or from the shadow's raster where the silhouette's outline or a hole
+/// crosses itself (a rough surface; a tear's lips overlapping).
+std::vector<Loop> outlineAlongAxis(const TriangleMesh& visual,
+  const ProjectedSurface& surface,
+  double extent)
+{
+  bool tangled = false;
+  std::vector<Loop> loops =
+    outlineAndHoles(silhouetteLoops(visual, surface, surface.axis()), surface, extent, tangled);
+  if (loops.empty() || tangled || crossesItself(loops.front()))
+  {
+    loops = outlineAndHoles(shadowLoops(visual, surface), surface, extent, tangled);
+  }
+  if (loops.empty())
+  {
+    throw InvalidInputError(nameOf(visual) + ": no outline seen along the thickness axis");
+  }
+  return loops;
+}
+
+/// Largest thickness over a lattice inside the outline; InvalidInputError
+/// when it is too large for the extent (not a thin object).
+void measureThickness(const TriangleMesh& visual,
+  const ProjectedSurface& surface,
+  const std::vector<Loop>& loops,
+  double maximumRatio,
+  GeneratedCollisionMesh& result)
+{
+  const double extent = std::max(surface.extent().x(), surface.extent().y());
+  double largest = 0.0;
+  double middle = 0.0;
+  for (const Vector2& q : latticeInside(loops, extent / 40.0, 0.0))
+  {
+    largest = std::max(largest, 2.0 * halfThicknessAt(surface, q, middle));
+  }
+  result.largestThickness = largest;
+  result.thicknessRatio = extent > 0.0 ? largest / extent : Infinity;
+  if (!(result.thicknessRatio <= maximumRatio))
+  {
+    throw InvalidInputError(nameOf(visual) + " is not a thin object: thickness-to-extent ratio " +
+                            std::to_string(result.thicknessRatio) + " (largest thickness " +
+                            std::to_string(largest) + " over extent " + std::to_string(extent) +
+                            "), at most " + std::to_string(maximumRatio));
+  }
 }
 
 } // namespace
@@ -890,78 +1150,36 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
   }
   checkVisual(visual);
 
-  // 1. Thickness axis: least spread of the area (triangle centres, area
-  // weighted).
+  // 1. Thickness axis; 2. outline (and holes), thinness.
   report(progress, 0.1, "finding the thickness axis");
-  double area = 0.0;
-  Vector3 centre = Vector3::Zero();
-  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
-  {
-    const Triangle& c = visual.triangles[t];
-    const double a = visual.triangleArea(t);
-    area += a;
-    centre += a * (visual.positions[c[0]] + visual.positions[c[1]] + visual.positions[c[2]]) / 3.0;
-  }
-  centre /= area;
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
-  {
-    const Triangle& c = visual.triangles[t];
-    const Vector3 d =
-      (visual.positions[c[0]] + visual.positions[c[1]] + visual.positions[c[2]]) / 3.0 - centre;
-    covariance += visual.triangleArea(t) * d * d.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axes(covariance);
-  const Vector3 n = axes.eigenvectors().col(0).normalized();
-  const Vector3 u = axes.eigenvectors().col(2).normalized();
-  const Vector3 v = n.cross(u);
-  const ProjectedSurface surface(visual, centre, u, v, n);
-
-  // 2. Outline, thinness.
+  const ProjectedSurface surface = projectionAlongThickness(visual);
+  const Vector3 n = surface.axis();
+  const double extent = std::max(surface.extent().x(), surface.extent().y());
   report(progress, 0.2, "tracing the outline");
-  std::vector<Vector2> silhouette = silhouetteOutline(visual, surface, n);
-  if (silhouette.size() < 3 || crossesItself(silhouette))
-  {
-    silhouette = shadowOutline(visual, surface);
-  }
-  if (silhouette.size() < 3)
-  {
-    throw InvalidInputError(nameOf(visual) + ": no outline seen along the thickness axis");
-  }
+  const std::vector<Loop> outline = outlineAlongAxis(visual, surface, extent);
   GeneratedCollisionMesh result;
   result.thicknessAxis = n;
-  const double extent = std::max(surface.extent().x(), surface.extent().y());
+  measureThickness(visual, surface, outline, settings.maximumThicknessRatio, result);
   auto halfThickness = [&](const Vector2& q, double& middle)
   { return halfThicknessAt(surface, q, middle); };
-  {
-    // Thickness sampled over the silhouette's lattice.
-    double largest = 0.0;
-    double middle = 0.0;
-    for (const Vector2& q : latticeInside(silhouette, extent / 40.0, 0.0))
-    {
-      largest = std::max(largest, 2.0 * halfThickness(q, middle));
-    }
-    result.largestThickness = largest;
-    result.thicknessRatio = extent > 0.0 ? largest / extent : Infinity;
-    if (!(result.thicknessRatio <= settings.maximumThicknessRatio))
-    {
-      throw InvalidInputError(nameOf(visual) + " is not a thin object: thickness-to-extent ratio " +
-                              std::to_string(result.thicknessRatio) + " (largest thickness " +
-                              std::to_string(largest) + " over extent " + std::to_string(extent) +
-                              "), at most " + std::to_string(settings.maximumThicknessRatio));
-    }
-  }
 
-  // Border: resampled, moved in until the local half thickness reaches it.
+  // Borders: resampled, moved in until the local half thickness reaches
+  // them; the outline's first, then each hole's.
   report(progress, 0.3, "placing the border");
   const int borderCount = borderVertexCountFor(vertexCount);
-  std::vector<Vector2> border =
-    placeBorder(surface, silhouette, borderCount, extent, result.largestThickness);
+  const std::vector<int> counts = borderCountsOf(outline, borderCount);
+  std::vector<Loop> borders;
+  std::vector<Vector2> points;
+  for (std::size_t k = 0; k < outline.size(); ++k)
+  {
+    borders.push_back(placeBorder(surface, outline[k], counts[k], extent, result.largestThickness));
+    points.insert(points.end(), borders.back().begin(), borders.back().end());
+  }
 
   // 3. Interior lattice with the count that makes vertexCount in all.
   report(progress, 0.4, "filling the inside");
   const int interiorCount = vertexCount - borderCount;
-  std::vector<Vector2> interior = interiorLattice(border, interiorCount, extent);
+  std::vector<Vector2> interior = interiorLattice(surface, borders, interiorCount, extent);
   if (static_cast<int>(interior.size()) < interiorCount)
   {
     throw InvalidInputError(nameOf(visual) + ": the outline leaves no room for " +
@@ -969,13 +1187,12 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
   }
   interior.resize(static_cast<std::size_t>(interiorCount)); // the nearest the border go
 
-  // Constrained Delaunay triangulation of border and inside.
+  // Constrained Delaunay triangulation of borders and inside.
   report(progress, 0.5, "triangulating");
-  std::vector<Vector2> points = border;
   points.insert(points.end(), interior.begin(), interior.end());
   TriangleMesh& mesh = result.mesh;
   mesh.name = visual.name + " collision";
-  mesh.triangles = triangulateInside(points, border.size(), nameOf(visual));
+  mesh.triangles = triangulateInside(points, borders, nameOf(visual));
 
   // 4. Lift to the middle, radius half the thickness.
   report(progress, 0.6, "lifting to the mid-surface");
