@@ -1,11 +1,18 @@
 #include "TissueBundle.h"
 
+#include "AtomicFileWriter.h"
 #include "BindingCache.h"
 #include "ThinTissueError.h"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 
 namespace thintissue
 {
@@ -13,49 +20,77 @@ namespace thintissue
 namespace
 {
 
+/// Magic of a file of several tissues; a single tissue's file starts with
+/// the binding file's magic (BindingCache.cxx).
+constexpr char SeveralTissuesMagic[8] = { 'T', 'T', 'T', 'I', 'S', 'S', '\r', '\n' };
+constexpr std::uint32_t SeveralTissuesVersion = 1;
+
 void embed(TissueBundle& bundle)
 {
   bundle.visualEmbedding = HexahedralEmbedding(bundle.simulation, bundle.visual.positions);
   bundle.collisionEmbedding = HexahedralEmbedding(bundle.simulation, bundle.collision.positions);
 }
 
-} // namespace
-
-TissueBundle prepareTissue(const TriangleMesh& visual,
-  const TissuePreparationSettings& settings,
-  const GenerationProgress& progress)
+struct ResolvedUnits
 {
-  const auto start = std::chrono::steady_clock::now();
-  // Stages: collision mesh 0-0.2, hexahedra 0.2-0.25, binding 0.25-1.
-  auto stage = [&](double from, double to)
+  LengthUnits units;
+  bool detected = false;
+  std::string reason = "given";
+  bool confident = true;
+};
+
+ResolvedUnits resolveUnits(const std::optional<LengthUnits>& given, double largestExtent)
+{
+  if (given)
   {
-    return [&progress, from, to](double fraction, const char* what)
-    { return !progress || progress(from + (to - from) * fraction, what); };
-  };
-  TissueBundle bundle;
-  const GeneratedCollisionMesh generated =
-    makeCollisionMidSurface(visual, settings.collision, stage(0.0, 0.2));
-  bundle.collision = generated.mesh;
-  if (progress && !progress(0.2, "making the hexahedra"))
-  {
-    throw GenerationAbortedError("tissue preparation aborted while making the hexahedra");
+    return { *given, false, "given", true };
   }
-  bundle.simulation = makeSimulationHexahedra(visual, settings.hexahedronCount);
-  VisualCollisionBindingSettings bindingSettings = settings.binding;
-  bindingSettings.radiusArrayName = settings.collision.radiusArrayName;
-  const auto bindingStage = stage(0.25, 1.0);
-  try
+  const DetectedLengthUnits detected = detectLengthUnits(largestExtent);
+  return { detected.units, true, detected.reason, detected.confident };
+}
+
+nlohmann::json unitsJson(const ResolvedUnits& units)
+{
+  return { { "name", units.units.name },
+    { "metresPerUnit", units.units.metresPerUnit },
+    { "detected", units.detected },
+    { "reason", units.reason } };
+}
+
+/// Units recorded in a bundle's metadata, if any.
+std::optional<LengthUnits> unitsFromMetadata(const std::string& metadata)
+{
+  const nlohmann::json json = nlohmann::json::parse(metadata, nullptr, false);
+  if (json.is_discarded() || !json.is_object() || !json.contains("units") ||
+      !json["units"].is_object())
   {
-    bundle.binding = bindVisualToCollision(visual, bundle.collision, bindingSettings, bindingStage);
+    return std::nullopt;
   }
-  catch (const BindingAbortedError& aborted)
+  const nlohmann::json& units = json["units"];
+  const double scale = units.value("metresPerUnit", 0.0);
+  if (!(scale > 0.0) || !std::isfinite(scale))
   {
-    throw GenerationAbortedError(aborted.what());
+    return std::nullopt;
   }
-  bundle.visual = bundle.binding.visual;
-  embed(bundle);
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return LengthUnits{ units.value("name", std::string()), scale };
+}
+
+void requireOnePiece(const TriangleMesh& visual)
+{
+  const std::size_t pieces = countPieces(visual);
+  if (pieces > 1)
+  {
+    throw InvalidInputError("visual mesh '" + visual.name + "': " + std::to_string(pieces) +
+                            " separate pieces; each large piece is a tissue of its own "
+                            "(prepareTissues, ThinTissuePrepare)");
+  }
+}
+
+nlohmann::json preparationMetadata(const TriangleMesh& visual,
+  const TissuePreparationSettings& settings,
+  const GeneratedCollisionMesh& generated,
+  const TissueBundle& bundle)
+{
   nlohmann::json metadata;
   metadata["generator"] = "ThinTissue prepareTissue";
   metadata["source"] = visual.name;
@@ -74,9 +109,135 @@ TissueBundle prepareTissue(const TriangleMesh& visual,
   metadata["thicknessAxis"] = {
     generated.thicknessAxis.x(), generated.thicknessAxis.y(), generated.thicknessAxis.z()
   };
-  metadata["preparationSeconds"] = seconds;
+  return metadata;
+}
+
+/// prepareTissue with the units already found; `extra` goes into the
+/// metadata (the piece of several).
+TissueBundle prepareOne(const TriangleMesh& visual,
+  const TissuePreparationSettings& settings,
+  const ResolvedUnits& units,
+  const nlohmann::json& extra,
+  const GenerationProgress& progress)
+{
+  const auto start = std::chrono::steady_clock::now();
+  // Stages: collision mesh 0-0.2, hexahedra 0.2-0.25, binding 0.25-0.95,
+  // quality 0.95-1.
+  auto stage = [&](double from, double to)
+  {
+    return [&progress, from, to](double fraction, const char* what)
+    { return !progress || progress(from + (to - from) * fraction, what); };
+  };
+  auto announce = [&](double fraction, const char* what)
+  {
+    if (progress && !progress(fraction, what))
+    {
+      throw GenerationAbortedError(std::string("tissue preparation aborted while ") + what);
+    }
+  };
+  TissueBundle bundle;
+  const GeneratedCollisionMesh generated =
+    makeCollisionMidSurface(visual, settings.collision, stage(0.0, 0.2));
+  bundle.collision = generated.mesh;
+  announce(0.2, "making the hexahedra");
+  bundle.simulation = makeSimulationHexahedra(visual, settings.hexahedronCount);
+  VisualCollisionBindingSettings bindingSettings = settings.binding;
+  bindingSettings.radiusArrayName = settings.collision.radiusArrayName;
+  try
+  {
+    bundle.binding =
+      bindVisualToCollision(visual, bundle.collision, bindingSettings, stage(0.25, 0.95));
+  }
+  catch (const BindingAbortedError& aborted)
+  {
+    throw GenerationAbortedError(aborted.what());
+  }
+  bundle.visual = bundle.binding.visual;
+  embed(bundle);
+  announce(0.95, "measuring the quality");
+  bundle.quality = measureTissueQuality(bundle.binding, settings.quality);
+  bundle.units = units.units;
+  nlohmann::json metadata = preparationMetadata(visual, settings, generated, bundle);
+  metadata["units"] = unitsJson(units);
+  metadata["quality"] = nlohmann::json::parse(bundle.quality.toJson());
+  metadata.update(extra);
+  metadata["preparationSeconds"] =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   bundle.metadata = metadata.dump(2);
+  announce(1.0, "done");
   return bundle;
+}
+
+/// The dropped fragments, as metadata, with a warning each.
+nlohmann::json droppedPieces(const PieceSelection& pieces, std::vector<std::string>& warnings)
+{
+  nlohmann::json dropped = nlohmann::json::array();
+  for (const MeshPiece& piece : pieces.dropped)
+  {
+    std::ostringstream percent;
+    percent.precision(2);
+    percent << 100.0 * piece.area / pieces.kept.front().area;
+    warnings.push_back("dropped " + piece.description() + ": " + percent.str() +
+                       "% of the largest piece's area, a fragment");
+    dropped.push_back(piece.description());
+  }
+  return dropped;
+}
+
+} // namespace
+
+TissueBundle prepareTissue(const TriangleMesh& visual,
+  const TissuePreparationSettings& settings,
+  const GenerationProgress& progress)
+{
+  requireOnePiece(visual);
+  const ResolvedUnits units = resolveUnits(settings.units, visual.boundingBox().sizes().maxCoeff());
+  return prepareOne(visual, settings, units, nlohmann::json::object(), progress);
+}
+
+PreparedTissues prepareTissues(const TriangleMesh& visual,
+  const TissuePreparationSettings& settings,
+  const GenerationProgress& progress)
+{
+  PieceSelection pieces = selectPieces(visual, settings.minimumPieceFraction);
+  if (pieces.kept.empty())
+  {
+    throw InvalidInputError("visual mesh '" + visual.name + "' has no triangles");
+  }
+  PreparedTissues result;
+  const ResolvedUnits units = resolveUnits(settings.units, pieces.kept.front().largestExtent);
+  result.units = units.units;
+  result.unitsDetected = units.detected;
+  result.unitsReason = units.reason;
+  if (!units.confident)
+  {
+    result.warnings.push_back("units: " + units.reason + "; give them if they are not");
+  }
+  const nlohmann::json dropped = droppedPieces(pieces, result.warnings);
+  std::size_t totalVertices = 0;
+  for (const MeshPiece& piece : pieces.kept)
+  {
+    totalVertices += piece.mesh.vertexCount();
+  }
+  std::size_t doneVertices = 0;
+  for (const MeshPiece& piece : pieces.kept)
+  {
+    // Progress by pieces, in proportion to their vertices.
+    const double from = static_cast<double>(doneVertices) / totalVertices;
+    doneVertices += piece.mesh.vertexCount();
+    const double to = static_cast<double>(doneVertices) / totalVertices;
+    GenerationProgress pieceProgress = [&progress, from, to](double fraction, const char* what)
+    { return !progress || progress(from + (to - from) * fraction, what); };
+    nlohmann::json extra;
+    extra["piece"] = { { "number", piece.number },
+      { "of", pieces.kept.size() },
+      { "area", piece.area },
+      { "centre", { piece.centre.x(), piece.centre.y(), piece.centre.z() } } };
+    extra["droppedPieces"] = dropped;
+    result.tissues.push_back(prepareOne(piece.mesh, settings, units, extra, pieceProgress));
+  }
+  result.droppedPieces = std::move(pieces.dropped);
+  return result;
 }
 
 void addBundleMetadata(TissueBundle& bundle, const std::string& key, const std::string& json)
@@ -95,27 +256,38 @@ void addBundleMetadata(TissueBundle& bundle, const std::string& key, const std::
   }
 }
 
-void writeTissueBundle(const std::string& path, const TissueBundle& bundle)
+namespace
+{
+
+/// A single tissue's file content.
+std::string bundleBytes(const TissueBundle& bundle)
 {
   // The input checksum of a bundle is that of its own meshes: a bundle is
   // read on its own (readBindingFile), the checksum names what it holds.
-  writeBindingCache(path,
-    bundle.binding,
+  return bindingCacheBytes(bundle.binding,
     bindingInputChecksum(bundle.visual, bundle.collision, VisualCollisionBindingSettings{}),
     &bundle.simulation,
     bundle.metadata);
 }
 
-TissueBundle readTissueBundle(const std::string& path)
+template <typename T>
+void put(std::string& bytes, T value)
 {
-  std::string why;
-  std::optional<BindingCacheContents> contents = readBindingFile(path, &why);
+  bytes.append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+/// `contents` of the file (or tissue) `name` as a bundle.
+TissueBundle bundleOf(const std::string& path,
+  const std::string& name,
+  std::optional<BindingCacheContents> contents,
+  const std::string& why)
+{
   if (!contents)
   {
-    // why: "binding file '<path>': <reason>"; the error names the path.
-    const std::string prefix = "binding file '" + path + "': ";
-    throw FileError(
-      path, "tissue bundle: " + (why.rfind(prefix, 0) == 0 ? why.substr(prefix.size()) : why));
+    // why: "binding file '<name>': <reason>"; the error names the path.
+    const std::string prefix = "binding file '" + name + "': ";
+    const std::string reason = why.rfind(prefix, 0) == 0 ? why.substr(prefix.size()) : why;
+    throw FileError(path, "tissue bundle: " + (name == path ? "" : name + ": ") + reason);
   }
   if (!contents->simulation)
   {
@@ -139,7 +311,129 @@ TissueBundle readTissueBundle(const std::string& path)
     throw FileError(
       path, std::string("tissue bundle: its hexahedra do not hold its meshes: ") + error.what());
   }
+  bundle.quality = measureTissueQuality(bundle.binding);
+  bundle.units = unitsFromMetadata(bundle.metadata);
   return bundle;
+}
+
+/// The whole file, when it holds several tissues (nothing otherwise).
+std::optional<std::string> severalTissuesFile(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  char magic[sizeof(SeveralTissuesMagic)] = {};
+  if (!in || std::filesystem::is_directory(path) || !in.read(magic, sizeof(magic)) ||
+      std::memcmp(magic, SeveralTissuesMagic, sizeof(magic)) != 0)
+  {
+    return std::nullopt;
+  }
+  in.seekg(0);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// The tissues' files inside a file of several tissues.
+std::vector<std::string> tissueFiles(const std::string& path, const std::string& bytes)
+{
+  std::size_t at = sizeof(SeveralTissuesMagic);
+  auto take = [&](std::size_t size)
+  {
+    if (bytes.size() - at < size)
+    {
+      throw FileError(
+        path, "tissue bundle: damaged: truncated after " + std::to_string(at) + " bytes");
+    }
+    at += size;
+    return bytes.substr(at - size, size);
+  };
+  auto number = [&](auto value)
+  {
+    std::memcpy(&value, take(sizeof(value)).data(), sizeof(value));
+    return value;
+  };
+  const auto version = number(std::uint32_t());
+  if (version != SeveralTissuesVersion)
+  {
+    throw FileError(path,
+      "tissue bundle: format version " + std::to_string(version) +
+        " of several tissues, expected " + std::to_string(SeveralTissuesVersion));
+  }
+  std::vector<std::string> files(number(std::uint32_t()));
+  for (std::string& file : files)
+  {
+    file = take(number(std::uint64_t()));
+  }
+  if (at != bytes.size())
+  {
+    throw FileError(path, "tissue bundle: damaged: trailing bytes");
+  }
+  return files;
+}
+
+} // namespace
+
+void writeTissueBundle(const std::string& path, const TissueBundle& bundle)
+{
+  const std::string bytes = bundleBytes(bundle);
+  writeFileAtomically(path,
+    [&](std::ostream& out)
+    { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
+}
+
+void writeTissueBundles(const std::string& path, const std::vector<TissueBundle>& bundles)
+{
+  if (bundles.empty())
+  {
+    throw InvalidInputError("tissue bundle '" + path + "': no tissues to write");
+  }
+  if (bundles.size() == 1)
+  {
+    writeTissueBundle(path, bundles.front());
+    return;
+  }
+  std::string bytes(SeveralTissuesMagic, sizeof(SeveralTissuesMagic));
+  put(bytes, SeveralTissuesVersion);
+  put(bytes, static_cast<std::uint32_t>(bundles.size()));
+  for (const TissueBundle& bundle : bundles)
+  {
+    const std::string file = bundleBytes(bundle);
+    put(bytes, static_cast<std::uint64_t>(file.size()));
+    bytes += file;
+  }
+  writeFileAtomically(path,
+    [&](std::ostream& out)
+    { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
+}
+
+TissueBundle readTissueBundle(const std::string& path)
+{
+  if (const std::optional<std::string> several = severalTissuesFile(path))
+  {
+    const std::size_t count = tissueFiles(path, *several).size();
+    throw FileError(path,
+      "tissue bundle: holds " + std::to_string(count) +
+        " tissues; read them with readTissueBundles (vtkTissueBundleReader: "
+        "TissueIndex)");
+  }
+  std::string why;
+  return bundleOf(path, path, readBindingFile(path, &why), why);
+}
+
+std::vector<TissueBundle> readTissueBundles(const std::string& path)
+{
+  const std::optional<std::string> several = severalTissuesFile(path);
+  if (!several)
+  {
+    return { readTissueBundle(path) };
+  }
+  std::vector<TissueBundle> bundles;
+  const std::vector<std::string> files = tissueFiles(path, *several);
+  for (std::size_t i = 0; i < files.size(); ++i)
+  {
+    const std::string name =
+      "tissue " + std::to_string(i + 1) + " of " + std::to_string(files.size());
+    std::string why;
+    bundles.push_back(bundleOf(path, name, readBindingBytes(files[i], name, &why), why));
+  }
+  return bundles;
 }
 
 } // namespace thintissue
