@@ -1228,16 +1228,51 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
   {
     normal.normalize();
   }
+  // Signed distance to the thick surface, exact: a triangle is skipped when
+  // its bounding sphere, grown by its largest radius, cannot beat the best
+  // so far; the previous query's best triangle goes first (neighbouring
+  // queries are near each other).
+  std::vector<Vector3> centres(mesh.triangleCount());
+  std::vector<double> reach(mesh.triangleCount());
+  std::vector<double> largestRadius(mesh.triangleCount());
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    const Triangle& c = mesh.triangles[t];
+    centres[t] = (mesh.positions[c[0]] + mesh.positions[c[1]] + mesh.positions[c[2]]) / 3.0;
+    reach[t] = 0.0;
+    largestRadius[t] = 0.0;
+    for (int k : c)
+    {
+      reach[t] = std::max(reach[t], (mesh.positions[k] - centres[t]).norm());
+      largestRadius[t] = std::max(largestRadius[t], radii[k]);
+    }
+  }
+  std::size_t hint = 0;
   auto thickDistance = [&](const Vector3& x)
   {
     double best = Infinity;
-    for (const Triangle& t : mesh.triangles)
+    auto visit = [&](std::size_t index)
     {
+      if ((x - centres[index]).norm() - reach[index] - largestRadius[index] >= best)
+      {
+        return;
+      }
+      const Triangle& t = mesh.triangles[index];
       const TriangleClosestPoint closest = closestPointOnTriangleWithBarycentric(
         x, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
       const double r = closest.barycentric[0] * radii[t[0]] + closest.barycentric[1] * radii[t[1]] +
                        closest.barycentric[2] * radii[t[2]];
-      best = std::min(best, (x - closest.point).norm() - r);
+      const double distance = (x - closest.point).norm() - r;
+      if (distance < best)
+      {
+        best = distance;
+        hint = index;
+      }
+    };
+    visit(hint);
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+      visit(t);
     }
     return best;
   };
