@@ -5,6 +5,7 @@
 #include "vtkBindingConversion.h"
 #include "vtkThinTissueConversion.h"
 
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -14,8 +15,36 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <exception>
+#include <initializer_list>
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkTissueBundleReader);
+
+namespace
+{
+
+/// The bundle's length units as field data of each output (when recorded).
+void addUnits(const thintissue::TissueBundle& bundle, std::initializer_list<vtkDataObject*> outputs)
+{
+  if (!bundle.units)
+  {
+    return;
+  }
+  for (vtkDataObject* output : outputs)
+  {
+    vtkNew<vtkStringArray> name;
+    name->SetName("LengthUnits");
+    name->InsertNextValue(bundle.units->name);
+    vtkNew<vtkDoubleArray> scale;
+    scale->SetName("MetresPerUnit");
+    scale->InsertNextValue(bundle.units->metresPerUnit);
+    output->GetFieldData()->AddArray(name);
+    output->GetFieldData()->AddArray(scale);
+  }
+}
+
+} // namespace
 
 vtkTissueBundleReader::vtkTissueBundleReader()
 {
@@ -58,6 +87,7 @@ int vtkTissueBundleReader::RequestData(vtkInformation*,
   vtkPolyData* collision = vtkPolyData::GetData(outputs, CollisionPort);
   vtkUnstructuredGrid* simulation = vtkUnstructuredGrid::GetData(outputs, SimulationPort);
   this->LastErrorMessage.clear();
+  this->NumberOfTissues = 0;
   visual->Initialize();
   collision->Initialize();
   simulation->Initialize();
@@ -67,7 +97,17 @@ int vtkTissueBundleReader::RequestData(vtkInformation*,
     {
       throw thintissue::InvalidInputError("vtkTissueBundleReader: no FileName");
     }
-    const thintissue::TissueBundle bundle = thintissue::readTissueBundle(this->FileName);
+    const std::vector<thintissue::TissueBundle> bundles =
+      thintissue::readTissueBundles(this->FileName);
+    this->NumberOfTissues = static_cast<int>(bundles.size());
+    if (this->TissueIndex >= this->NumberOfTissues)
+    {
+      throw thintissue::InvalidInputError(
+        "vtkTissueBundleReader: TissueIndex " + std::to_string(this->TissueIndex) + " but '" +
+        this->FileName + "' holds " + std::to_string(this->NumberOfTissues) + " tissue" +
+        (this->NumberOfTissues == 1 ? "" : "s"));
+    }
+    const thintissue::TissueBundle& bundle = bundles[this->TissueIndex];
     visual->ShallowCopy(thintissue::boundVisualPolyData(bundle.binding));
     vtkNew<vtkStringArray> metadata;
     metadata->SetName("Metadata");
@@ -75,6 +115,7 @@ int vtkTissueBundleReader::RequestData(vtkInformation*,
     visual->GetFieldData()->AddArray(metadata);
     collision->ShallowCopy(thintissue::toPolyData(bundle.collision));
     simulation->ShallowCopy(thintissue::toUnstructuredGrid(bundle.simulation));
+    addUnits(bundle, { visual, collision, simulation });
   }
   catch (const std::exception& error)
   {
@@ -92,5 +133,7 @@ void vtkTissueBundleReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n"
+     << indent << "TissueIndex: " << this->TissueIndex << "\n"
+     << indent << "NumberOfTissues: " << this->NumberOfTissues << "\n"
      << indent << "LastErrorMessage: " << this->LastErrorMessage << "\n";
 }

@@ -14,6 +14,14 @@
  * "Radius"; 2 the hexahedra (vtkUnstructuredGrid). A missing, damaged or
  * stale-format file leaves empty outputs and the reason, naming the file,
  * in GetLastErrorMessage().
+ *
+ * A bundle may hold several tissues (ThinTissuePrepare on a file of several
+ * pieces, writeTissueBundles): TissueIndex chooses which one the outputs
+ * show (0, the largest, by default); GetNumberOfTissues() says how many
+ * there are after an update. When the bundle records its length units,
+ * every output carries them as field data: "LengthUnits" (string: "mm",
+ * "cm", "m", "um", or "" for another scale) and "MetresPerUnit" (double);
+ * the coordinates themselves are as prepared, never rescaled.
  */
 #ifndef vtkTissueBundleReader_h
 #define vtkTissueBundleReader_h
@@ -47,6 +55,15 @@ public:
   ///@}
 
   ///@{
+  /// Which tissue of a bundle of several (0-based; default 0).
+  vtkSetClampMacro(TissueIndex, int, 0, VTK_INT_MAX);
+  vtkGetMacro(TissueIndex, int);
+  ///@}
+
+  /// Tissues in the file, after Update() (0 when it could not be read).
+  int GetNumberOfTissues() const { return this->NumberOfTissues; }
+
+  ///@{
   /// The outputs (valid after Update()).
   vtkPolyData* GetVisualOutput();
   vtkPolyData* GetCollisionOutput();
@@ -64,6 +81,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   char* FileName = nullptr;
+  int TissueIndex = 0;
+  int NumberOfTissues = 0;
   std::string LastErrorMessage;
 
 private:
