@@ -6,6 +6,18 @@
 //   ThinTissuePrepare VISUAL_MESH -o BUNDLE [--collision-vertices N | --collision-triangles N]
 //                     [--hexahedra N] [--collision-output FILE.vtp]
 //                     [--hexahedra-output FILE.vtu] [--max-thickness-ratio R] [--repair]
+//                     [--units mm|cm|m|um | --scale S] [--minimum-piece-fraction F]
+//                     [--bundle-per-piece]
+//
+// Units: the mesh is never rescaled (every tolerance is relative to it);
+// its units, given or detected from its size (LengthUnits.h), are printed
+// and recorded in the bundle. Pieces: each large piece of the visual mesh
+// becomes a tissue of its own; fragments (area below F of the largest
+// piece's) are dropped with a warning naming each. Several tissues go in
+// one bundle file (TissueBundle.h), or with --bundle-per-piece in
+// BUNDLE-1.ttbundle, BUNDLE-2.ttbundle, ... (the optional outputs too).
+// Each tissue's quality report (TissueQuality.h) is printed, with its
+// warnings, and kept in the metadata under "quality".
 //
 // With --repair the visual mesh is repaired first (MeshRepair.h: non-manifold
 // vertices split, small holes filled, degenerate and duplicate triangles
@@ -15,6 +27,7 @@
 //
 // Exit codes: 0 done, 1 failed (unreadable mesh, bad input, write error),
 // 2 bad command line.
+#include "LengthUnits.h"
 #include "MeshRepair.h"
 #include "MeshValidation.h"
 #include "ThinTissueAppSupport.h"
@@ -26,9 +39,14 @@
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -49,6 +67,9 @@ struct Options
   int hexahedra = 76;
   double maximumThicknessRatio = 0.35;
   bool repair = false;
+  std::optional<thintissue::LengthUnits> units;
+  double minimumPieceFraction = 0.05;
+  bool bundlePerPiece = false;
 };
 
 void printUsage(std::ostream& out)
@@ -56,6 +77,8 @@ void printUsage(std::ostream& out)
   out << "usage: ThinTissuePrepare VISUAL_MESH -o BUNDLE [--collision-vertices N] [--hexahedra N]\n"
          "                         [--collision-output FILE.vtp] [--hexahedra-output FILE.vtu]\n"
          "                         [--max-thickness-ratio R] [--repair]\n"
+         "                         [--units mm|cm|m|um | --scale S] [--minimum-piece-fraction F]\n"
+         "                         [--bundle-per-piece]\n"
          "\n"
          "Makes a ready tissue from a closed, thin visual surface: a collision mid-surface\n"
          "with per-vertex radii (half the local thickness), hexahedra for the simulation,\n"
@@ -74,7 +97,20 @@ void printUsage(std::ostream& out)
          "                               vertices, fill small holes, remove degenerate and\n"
          "                               duplicate triangles, orient the triangles; prints\n"
          "                               what changed and where, and keeps it in the bundle\n"
-         "  --help                       this text\n";
+         "  --units mm|cm|m|um           units of VISUAL_MESH (default: detected from its size,\n"
+         "                               a tissue of 5 mm to 0.5 m; trying mm, m, cm, um)\n"
+         "  --scale S                    or: one unit of VISUAL_MESH is S metres\n"
+         "  --minimum-piece-fraction F   pieces smaller than F times the largest piece's area\n"
+         "                               are fragments, dropped (default 0.05); each other\n"
+         "                               piece is a tissue of its own\n"
+         "  --bundle-per-piece           several tissues: one bundle each, BUNDLE-1, BUNDLE-2...\n"
+         "                               (default: all in BUNDLE)\n"
+         "  --help                       this text\n"
+         "\n"
+         "Prints the units, the dropped fragments and each tissue's quality: the distance\n"
+         "between the visual and the thick collision surface relative to the local\n"
+         "thickness, visual vertices per collision triangle, the worst binding region, and\n"
+         "a warning when the collision mesh represents the tissue poorly.\n";
 }
 
 bool parsePositive(const std::string& text, int& value)
@@ -89,10 +125,92 @@ bool parsePositive(const std::string& text, int& value)
   return true;
 }
 
+bool parsePositiveNumber(const std::string& text, double& value)
+{
+  char* end = nullptr;
+  const double parsed = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !(parsed > 0.0) || !std::isfinite(parsed))
+  {
+    return false;
+  }
+  value = parsed;
+  return true;
+}
+
+/// Options that take a value; returns false with the message printed.
+bool parseValue(const std::string& option, const std::string& value, Options& options)
+{
+  auto refuse = [&](const std::string& expected)
+  {
+    std::cerr << Program << ": " << option << " expects " << expected << ", not '" << value
+              << "'\n";
+    return false;
+  };
+  if (option == "-o" || option == "--output")
+  {
+    options.bundle = value;
+  }
+  else if (option == "--collision-vertices" || option == "--hexahedra" ||
+           option == "--collision-triangles")
+  {
+    int& target = option == "--hexahedra"             ? options.hexahedra
+                  : option == "--collision-triangles" ? options.collisionTriangles
+                                                      : options.collisionVertices;
+    return parsePositive(value, target) || refuse("a positive whole number");
+  }
+  else if (option == "--collision-output")
+  {
+    options.collisionOutput = value;
+  }
+  else if (option == "--hexahedra-output")
+  {
+    options.hexahedraOutput = value;
+  }
+  else if (option == "--max-thickness-ratio")
+  {
+    return parsePositiveNumber(value, options.maximumThicknessRatio) || refuse("a positive number");
+  }
+  else if (option == "--units")
+  {
+    options.units = thintissue::lengthUnitsNamed(value);
+    return options.units.has_value() || refuse("mm, cm, m or um");
+  }
+  else if (option == "--scale")
+  {
+    double scale = 0.0;
+    if (!parsePositiveNumber(value, scale))
+    {
+      return refuse("a positive number of metres per unit");
+    }
+    options.units = thintissue::lengthUnitsOfScale(scale);
+  }
+  else if (option == "--minimum-piece-fraction")
+  {
+    double& fraction = options.minimumPieceFraction;
+    char* end = nullptr;
+    fraction = std::strtod(value.c_str(), &end);
+    return (end != value.c_str() && *end == '\0' && fraction >= 0.0 && fraction <= 1.0) ||
+           refuse("a fraction from 0 to 1");
+  }
+  return true;
+}
+
 /// 0: parsed; 2: bad command line; -1: --help printed.
 int parseArguments(int argc, char* argv[], Options& options)
 {
+  static const std::vector<std::string> valued = { "-o",
+    "--output",
+    "--collision-vertices",
+    "--collision-triangles",
+    "--hexahedra",
+    "--collision-output",
+    "--hexahedra-output",
+    "--max-thickness-ratio",
+    "--units",
+    "--scale",
+    "--minimum-piece-fraction" };
   std::vector<std::string> positional;
+  bool unitsGiven = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string argument = argv[i];
@@ -101,53 +219,24 @@ int parseArguments(int argc, char* argv[], Options& options)
       printUsage(std::cout);
       return -1;
     }
-    if (argument == "--repair")
+    if (argument == "--repair" || argument == "--bundle-per-piece")
     {
-      options.repair = true;
-      continue;
+      (argument == "--repair" ? options.repair : options.bundlePerPiece) = true;
     }
-    const bool takesValue = argument == "-o" || argument == "--output" ||
-                            argument == "--collision-vertices" || argument == "--hexahedra" ||
-                            argument == "--collision-triangles" ||
-                            argument == "--collision-output" || argument == "--hexahedra-output" ||
-                            argument == "--max-thickness-ratio";
-    if (takesValue && i + 1 >= argc)
+    else if (std::find(valued.begin(), valued.end(), argument) != valued.end())
     {
-      std::cerr << Program << ": " << argument << " expects a value\n";
-      return 2;
-    }
-    if (argument == "-o" || argument == "--output")
-    {
-      options.bundle = argv[++i];
-    }
-    else if (argument == "--collision-vertices" || argument == "--hexahedra" ||
-             argument == "--collision-triangles")
-    {
-      int& target = argument == "--hexahedra"             ? options.hexahedra
-                    : argument == "--collision-triangles" ? options.collisionTriangles
-                                                          : options.collisionVertices;
-      if (!parsePositive(argv[++i], target))
+      if (i + 1 >= argc)
       {
-        std::cerr << Program << ": " << argument << " expects a positive whole number, not '"
-                  << argv[i] << "'\n";
+        std::cerr << Program << ": " << argument << " expects a value\n";
         return 2;
       }
-    }
-    else if (argument == "--collision-output")
-    {
-      options.collisionOutput = argv[++i];
-    }
-    else if (argument == "--hexahedra-output")
-    {
-      options.hexahedraOutput = argv[++i];
-    }
-    else if (argument == "--max-thickness-ratio")
-    {
-      char* end = nullptr;
-      options.maximumThicknessRatio = std::strtod(argv[++i], &end);
-      if (end == argv[i] || *end != '\0' || !(options.maximumThicknessRatio > 0.0))
+      if ((argument == "--units" || argument == "--scale") && std::exchange(unitsGiven, true))
       {
-        std::cerr << Program << ": --max-thickness-ratio expects a positive number\n";
+        std::cerr << Program << ": give the units once (--units or --scale)\n";
+        return 2;
+      }
+      if (!parseValue(argument, argv[++i], options))
+      {
         return 2;
       }
     }
@@ -222,31 +311,165 @@ std::string repairAdvice(const thintissue::TriangleMesh& visual)
   return " (run with --repair to " + text + ")";
 }
 
-/// Writes --collision-output and --hexahedra-output if asked; returns the
-/// file that could not be written ("" when all were).
-std::string writeOptionalOutputs(const Options& options, const thintissue::TissueBundle& bundle)
+/// `path` with "-N" before its extension: "knee.ttbundle" -> "knee-2.ttbundle".
+std::string numbered(const std::string& path, std::size_t number)
 {
+  const std::filesystem::path p(path);
+  return (
+    p.parent_path() / (p.stem().string() + "-" + std::to_string(number) + p.extension().string()))
+    .string();
+}
+
+/// Writes --collision-output and --hexahedra-output if asked, numbered when
+/// there are several tissues; returns the file that could not be written
+/// ("" when all were).
+std::string writeOptionalOutputs(const Options& options,
+  const thintissue::TissueBundle& bundle,
+  std::size_t number,
+  std::size_t count)
+{
+  auto name = [&](const std::string& path) { return count > 1 ? numbered(path, number) : path; };
   if (!options.collisionOutput.empty())
   {
     vtkNew<vtkXMLPolyDataWriter> writer;
     writer->SetInputData(thintissue::toPolyData(bundle.collision));
-    writer->SetFileName(options.collisionOutput.c_str());
+    writer->SetFileName(name(options.collisionOutput).c_str());
     if (writer->Write() != 1)
     {
-      return options.collisionOutput;
+      return name(options.collisionOutput);
     }
   }
   if (!options.hexahedraOutput.empty())
   {
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
     writer->SetInputData(thintissue::toUnstructuredGrid(bundle.simulation));
-    writer->SetFileName(options.hexahedraOutput.c_str());
+    writer->SetFileName(name(options.hexahedraOutput).c_str());
     if (writer->Write() != 1)
     {
-      return options.hexahedraOutput;
+      return name(options.hexahedraOutput);
     }
   }
   return {};
+}
+
+thintissue::TissuePreparationSettings preparationSettings(const Options& options)
+{
+  thintissue::TissuePreparationSettings settings;
+  settings.collision.vertexCount = options.collisionVertices;
+  settings.collision.triangleCount = options.collisionTriangles;
+  settings.collision.maximumThicknessRatio = options.maximumThicknessRatio;
+  settings.hexahedronCount = options.hexahedra;
+  settings.units = options.units;
+  settings.minimumPieceFraction = options.minimumPieceFraction;
+  return settings;
+}
+
+std::string tissueCounts(const thintissue::TissueBundle& bundle)
+{
+  return std::to_string(bundle.collision.vertexCount()) + " collision vertices, " +
+         std::to_string(bundle.simulation.hexahedronCount()) + " hexahedra, " +
+         std::to_string(bundle.visual.vertexCount()) + " bound visual vertices";
+}
+
+/// Units, fragments, each tissue's metadata and quality, on the console.
+void printReport(const thintissue::PreparedTissues& prepared)
+{
+  std::cout << "units: " << prepared.units.description() << " ("
+            << (prepared.unitsDetected ? "detected from the size: " + prepared.unitsReason +
+                                           "; --units or --scale to say otherwise"
+                                       : std::string("given"))
+            << ")\n";
+  for (const std::string& warning : prepared.warnings)
+  {
+    std::cout << "warning: " << warning << "\n";
+  }
+  const std::size_t count = prepared.tissues.size();
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const thintissue::TissueBundle& bundle = prepared.tissues[i];
+    std::cout << bundle.metadata << "\n";
+    if (count > 1)
+    {
+      std::cout << "tissue " << i + 1 << " of " << count << " (" << bundle.visual.name << "):\n";
+    }
+    std::cout << bundle.quality.summary(prepared.units.name);
+  }
+}
+
+/// The bundle file(s); returns the file that could not be written.
+std::string writeTissues(const Options& options, const thintissue::PreparedTissues& prepared)
+{
+  const auto& tissues = prepared.tissues;
+  if (options.bundlePerPiece && tissues.size() > 1)
+  {
+    for (std::size_t i = 0; i < tissues.size(); ++i)
+    {
+      const std::string path = numbered(options.bundle, i + 1);
+      thintissue::writeTissueBundle(path, tissues[i]);
+      std::cout << "wrote '" << path << "': " << tissueCounts(tissues[i]) << "\n";
+    }
+  }
+  else
+  {
+    thintissue::writeTissueBundles(options.bundle, tissues);
+    std::cout << "wrote '" << options.bundle << "': ";
+    for (std::size_t i = 0; i < tissues.size(); ++i)
+    {
+      std::cout << (tissues.size() == 1 ? ""
+                     : i == 0           ? std::to_string(tissues.size()) + " tissues: 1: "
+                                        : "; " + std::to_string(i + 1) + ": ")
+                << tissueCounts(tissues[i]);
+    }
+    std::cout << "\n";
+  }
+  for (std::size_t i = 0; i < tissues.size(); ++i)
+  {
+    const std::string unwritten = writeOptionalOutputs(options, tissues[i], i + 1, tissues.size());
+    if (!unwritten.empty())
+    {
+      return unwritten;
+    }
+  }
+  return {};
+}
+
+/// Repair (if asked), preparation of every piece, report and files.
+int prepareAndWrite(const Options& options, thintissue::TriangleMesh& visual)
+{
+  thintissue::MeshRepairReport repair;
+  if (options.repair)
+  {
+    visual = thintissue::repairTriangleMesh(visual, {}, &repair);
+    std::cout << repair.summary() << std::flush;
+  }
+  TextProgressBar bar;
+  thintissue::PreparedTissues prepared;
+  try
+  {
+    prepared = thintissue::prepareTissues(visual,
+      preparationSettings(options),
+      [&bar](double fraction, const char* stage)
+      {
+        bar.draw(fraction, stage);
+        return true;
+      });
+  }
+  catch (...)
+  {
+    bar.finish();
+    throw;
+  }
+  bar.finish();
+  for (thintissue::TissueBundle& bundle : prepared.tissues)
+  {
+    if (options.repair)
+    {
+      thintissue::addBundleMetadata(bundle, "repair", repair.toJson());
+    }
+  }
+  printReport(prepared);
+  const std::string unwritten = writeTissues(options, prepared);
+  return unwritten.empty() ? 0 : fail("cannot write '" + unwritten + "'");
 }
 
 } // namespace
@@ -265,56 +488,20 @@ int main(int argc, char* argv[])
   {
     return fail(error);
   }
-  TextProgressBar bar;
   thintissue::TriangleMesh visual;
   try
   {
     visual = thintissue::fromPolyData(visualData, options.visual);
     visual.name = options.visual;
-    thintissue::MeshRepairReport repair;
-    if (options.repair)
-    {
-      visual = thintissue::repairTriangleMesh(visual, {}, &repair);
-      std::cout << repair.summary() << std::flush;
-    }
-    thintissue::TissuePreparationSettings settings;
-    settings.collision.vertexCount = options.collisionVertices;
-    settings.collision.triangleCount = options.collisionTriangles;
-    settings.collision.maximumThicknessRatio = options.maximumThicknessRatio;
-    settings.hexahedronCount = options.hexahedra;
-    thintissue::TissueBundle bundle = thintissue::prepareTissue(visual,
-      settings,
-      [&bar](double fraction, const char* stage)
-      {
-        bar.draw(fraction, stage);
-        return true;
-      });
-    bar.finish();
-    if (options.repair)
-    {
-      thintissue::addBundleMetadata(bundle, "repair", repair.toJson());
-    }
-    thintissue::writeTissueBundle(options.bundle, bundle);
-    const std::string unwritten = writeOptionalOutputs(options, bundle);
-    if (!unwritten.empty())
-    {
-      return fail("cannot write '" + unwritten + "'");
-    }
-    std::cout << bundle.metadata << "\n"
-              << "wrote '" << options.bundle << "': " << bundle.collision.vertexCount()
-              << " collision vertices, " << bundle.simulation.hexahedronCount() << " hexahedra, "
-              << bundle.visual.vertexCount() << " bound visual vertices\n";
+    return prepareAndWrite(options, visual);
   }
   catch (const thintissue::InvalidInputError& e)
   {
-    bar.finish();
     const bool read = !visual.triangles.empty();
     return fail(e.what() + (options.repair || !read ? std::string() : repairAdvice(visual)));
   }
   catch (const std::exception& e)
   {
-    bar.finish();
     return fail(e.what());
   }
-  return 0;
 }
