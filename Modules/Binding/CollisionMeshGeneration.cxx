@@ -1,6 +1,8 @@
 #include "CollisionMeshGeneration.h"
 
+#include "MeshPieces.h"
 #include "MeshQueries.h"
+#include "MeshRepair.h"
 #include "MeshValidation.h"
 #include "ProximityQueries.h"
 #include "SparseHexahedralGrid.h"
@@ -312,10 +314,12 @@ struct ShadowRaster
   std::size_t at(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
 };
 
-ShadowRaster rasterizeShadow(const TriangleMesh& mesh, const ProjectedSurface& surface)
+ShadowRaster rasterizeShadow(const TriangleMesh& mesh,
+  const ProjectedSurface& surface,
+  double cellsAcross = 256.0)
 {
   ShadowRaster r;
-  r.cell = std::max(surface.extent().x(), surface.extent().y()) / 256.0;
+  r.cell = std::max(surface.extent().x(), surface.extent().y()) / cellsAcross;
   r.origin = surface.low() - Vector2(3.0 * r.cell, 3.0 * r.cell);
   r.width = static_cast<int>(std::ceil(surface.extent().x() / r.cell)) + 7;
   r.height = static_cast<int>(std::ceil(surface.extent().y() / r.cell)) + 7;
@@ -1308,6 +1312,121 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
   result.hausdorffDistance = std::max(result.visualToThick, result.thickToVisual);
   report(progress, 1.0, "done");
   return result;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+
+/// Genus of a closed connected surface from its Euler characteristic.
+int genusOf(const TriangleMesh& mesh)
+{
+  std::vector<char> used(mesh.vertexCount(), 0);
+  long vertices = 0;
+  for (const Triangle& t : mesh.triangles)
+    for (int v : t)
+      vertices += used[v] ? 0 : (used[v] = 1);
+  const long edges = static_cast<long>(TriangleMeshAdjacency(mesh).edgeCount());
+  const long euler = vertices - edges + static_cast<long>(mesh.triangleCount());
+  return static_cast<int>((2 - euler) / 2);
+}
+
+/// The raster cells of the shadow's small holes (fewer than `largest`
+/// cells), grown by `margin` cells, and how many such holes there are.
+std::vector<char> tunnelFootprints(const ShadowRaster& raster,
+  int largest,
+  int margin,
+  std::vector<Vector2>& centres)
+{
+  std::vector<int> cellCounts;
+  const std::vector<int> piece = emptyPieces(raster, cellCounts);
+  std::vector<Vector2> sums(cellCounts.size(), Vector2::Zero());
+  std::vector<char> footprint(piece.size(), 0);
+  for (int j = 0; j < raster.height; ++j)
+    for (int i = 0; i < raster.width; ++i)
+    {
+      const int label = piece[raster.at(i, j)];
+      if (label <= 0 || cellCounts[label] >= largest)
+        continue;
+      sums[label] += raster.origin + raster.cell * Vector2(i + 0.5, j + 0.5);
+      for (int dj = -margin; dj <= margin; ++dj)
+        for (int di = -margin; di <= margin; ++di)
+          if (i + di >= 0 && j + dj >= 0 && i + di < raster.width && j + dj < raster.height)
+            footprint[raster.at(i + di, j + dj)] = 1;
+    }
+  for (std::size_t label = 1; label < cellCounts.size(); ++label)
+    if (cellCounts[label] < largest)
+      centres.push_back(sums[label] / static_cast<double>(cellCounts[label]));
+  return footprint;
+}
+
+} // namespace
+
+TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* report)
+{
+  TunnelClosingReport local;
+  TunnelClosingReport& r = report ? *report : local;
+  r = TunnelClosingReport{};
+  checkVisual(visual);
+  r.genusBefore = r.genusAfter = genusOf(visual);
+  if (r.genusBefore <= 0)
+    return visual;
+  const ProjectedSurface surface = projectionAlongThickness(visual);
+  // A 1024th of the extent: a perforation of a thin rim can be a few tenths
+  // of a millimetre across.
+  const ShadowRaster raster = rasterizeShadow(visual, surface, 1024.0);
+  constexpr int LargestTunnelCells = 1024; // 32 x 32 cells
+  constexpr int MarginCells = 8;           // the walls' slant, the mouths' rims
+  std::vector<Vector2> centres;
+  const std::vector<char> footprint =
+    tunnelFootprints(raster, LargestTunnelCells, MarginCells, centres);
+  r.tunnels = static_cast<int>(centres.size());
+  if (centres.empty())
+    return visual;
+  TriangleMesh cut = visual;
+  cut.triangles.clear();
+  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+  {
+    const Triangle& c = visual.triangles[t];
+    const Vector2 q = surface.project(
+      (visual.positions[c[0]] + visual.positions[c[1]] + visual.positions[c[2]]) / 3.0);
+    const int i = static_cast<int>(std::floor((q.x() - raster.origin.x()) / raster.cell));
+    const int j = static_cast<int>(std::floor((q.y() - raster.origin.y()) / raster.cell));
+    const bool inside = i >= 0 && j >= 0 && i < raster.width && j < raster.height;
+    if (!(inside && footprint[raster.at(i, j)]))
+    {
+      cut.triangles.push_back(c);
+      if (visual.hasTextureCoordinates())
+        cut.textureCorners.push_back(visual.textureCorners[t]);
+    }
+  }
+  // The openings run over the rim where a tunnel perforates it: any length
+  // is filled; islands left between neighbouring tunnels go.
+  MeshRepairSettings settings;
+  settings.maximumListedPerKind = 0;
+  settings.maximumHoleFraction = 2.0;
+  settings.maximumHoleEdges = 2000;
+  TriangleMesh closed = repairTriangleMesh(cut, settings);
+  if (countPieces(closed) > 1)
+  {
+    closed = std::move(splitIntoPieces(closed).front().mesh);
+    closed.name = visual.name;
+  }
+  const MeshValidationReport validation = validateTriangleMesh(closed);
+  const int genus = validation.isClosedOutwardSingleSurface() ? genusOf(closed) : r.genusBefore;
+  if (genus >= r.genusBefore)
+    return visual;
+  r.genusAfter = genus;
+  r.closed = r.genusBefore - genus;
+  for (const Vector2& q : centres)
+  {
+    double middle = 0.0;
+    halfThicknessAt(surface, q, middle);
+    const Vector3 x = surface.lift(q, middle);
+    r.changes.push_back("tunnel through the tissue at (" + std::to_string(x.x()) + ", " +
+                        std::to_string(x.y()) + ", " + std::to_string(x.z()) + ")");
+  }
+  return closed;
 }
 
 //------------------------------------------------------------------------------

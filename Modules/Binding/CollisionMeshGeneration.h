@@ -35,6 +35,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace thintissue
 {
@@ -81,6 +82,32 @@ class THINTISSUEBINDING_EXPORT GenerationAbortedError : public Error
 public:
   using Error::Error;
 };
+
+/// What closeSmallTunnels did.
+struct TunnelClosingReport
+{
+  /// Genus of the surface before and after (holes through it: a tear's gap
+  /// is one, a segmentation's tunnels through a thin rim are others).
+  int genusBefore = 0;
+  int genusAfter = 0;
+  /// Tunnels found (small holes of the shadow along the thickness axis)
+  /// and closed; one line per tunnel with its place.
+  int tunnels = 0;
+  int closed = 0;
+  std::vector<std::string> changes;
+};
+
+/// A closed thin surface with its small tunnels closed: holes through the
+/// tissue whose shadow along the thickness axis is at most 8 x 8 cells of
+/// a 256th of the extent (a segmentation's holes through a thin, blurred
+/// rim; a tear's gap is larger and stays). Each tunnel's walls and the
+/// surface around its two mouths are cut out and the two openings filled
+/// (repairTriangleMesh), kept only if the genus went down and the surface
+/// stays closed and manifold. Rim paths cannot separate the two sides of
+/// a surface with such tunnels (the binding refuses it). Returns the input
+/// unchanged when it has no tunnel.
+THINTISSUEBINDING_EXPORT TriangleMesh closeSmallTunnels(const TriangleMesh& visual,
+  TunnelClosingReport* report = nullptr);
 
 /// The collision mid-surface of a closed, manifold, thin visual surface.
 /// Throws InvalidInputError naming the mesh: open, non-manifold or

@@ -114,13 +114,17 @@ nlohmann::json preparationMetadata(const TriangleMesh& visual,
 
 /// prepareTissue with the units already found; `extra` goes into the
 /// metadata (the piece of several).
-TissueBundle prepareOne(const TriangleMesh& visual,
+TissueBundle prepareOne(const TriangleMesh& input,
   const TissuePreparationSettings& settings,
   const ResolvedUnits& units,
   const nlohmann::json& extra,
   const GenerationProgress& progress)
 {
   const auto start = std::chrono::steady_clock::now();
+  // A segmentation's tunnels through a thin rim would join the two sides
+  // that the rim paths must separate: closed first, and reported.
+  TunnelClosingReport tunnels;
+  const TriangleMesh visual = closeSmallTunnels(input, &tunnels);
   // Stages: collision mesh 0-0.2, hexahedra 0.2-0.25, binding 0.25-0.95,
   // quality 0.95-1.
   auto stage = [&](double from, double to)
@@ -159,6 +163,14 @@ TissueBundle prepareOne(const TriangleMesh& visual,
   bundle.units = units.units;
   nlohmann::json metadata = preparationMetadata(visual, settings, generated, bundle);
   metadata["units"] = unitsJson(units);
+  if (tunnels.genusBefore > 0)
+  {
+    metadata["tunnels"] = { { "genusBefore", tunnels.genusBefore },
+      { "genusAfter", tunnels.genusAfter },
+      { "found", tunnels.tunnels },
+      { "closed", tunnels.closed },
+      { "places", tunnels.changes } };
+  }
   metadata["quality"] = nlohmann::json::parse(bundle.quality.toJson());
   metadata.update(extra);
   metadata["preparationSeconds"] =
