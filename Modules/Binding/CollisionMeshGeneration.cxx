@@ -1385,6 +1385,7 @@ TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* 
     return visual;
   TriangleMesh cut = visual;
   cut.triangles.clear();
+  cut.textureCorners.clear();
   for (std::size_t t = 0; t < visual.triangleCount(); ++t)
   {
     const Triangle& c = visual.triangles[t];
