@@ -1126,6 +1126,130 @@ void measureThickness(const TriangleMesh& visual,
   }
 }
 
+/// Signed distance to the thick surface (the collision mesh's triangles
+/// swept by their interpolated radii), exact: a triangle is skipped when its
+/// bounding sphere, grown by its largest radius, cannot beat the best so
+/// far; the previous query's best triangle goes first (neighbouring queries
+/// are near each other).
+class ThickSurfaceDistance
+{
+public:
+  ThickSurfaceDistance(const TriangleMesh& mesh, const std::vector<double>& radii)
+    : Mesh(mesh)
+    , Radii(radii)
+    , Centres(mesh.triangleCount())
+    , Reach(mesh.triangleCount(), 0.0)
+    , LargestRadius(mesh.triangleCount(), 0.0)
+  {
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    {
+      const Triangle& c = mesh.triangles[t];
+      Centres[t] = (mesh.positions[c[0]] + mesh.positions[c[1]] + mesh.positions[c[2]]) / 3.0;
+      for (int k : c)
+      {
+        Reach[t] = std::max(Reach[t], (mesh.positions[k] - Centres[t]).norm());
+        LargestRadius[t] = std::max(LargestRadius[t], radii[k]);
+      }
+    }
+  }
+
+  double operator()(const Vector3& x)
+  {
+    double best = Infinity;
+    visit(x, Hint, best);
+    for (std::size_t t = 0; t < Mesh.triangleCount(); ++t)
+    {
+      visit(x, t, best);
+    }
+    return best;
+  }
+
+private:
+  void visit(const Vector3& x, std::size_t index, double& best)
+  {
+    if ((x - Centres[index]).norm() - Reach[index] - LargestRadius[index] >= best)
+    {
+      return;
+    }
+    const Triangle& t = Mesh.triangles[index];
+    const TriangleClosestPoint closest = closestPointOnTriangleWithBarycentric(
+      x, Mesh.positions[t[0]], Mesh.positions[t[1]], Mesh.positions[t[2]]);
+    const double r = closest.barycentric[0] * Radii[t[0]] + closest.barycentric[1] * Radii[t[1]] +
+                     closest.barycentric[2] * Radii[t[2]];
+    const double distance = (x - closest.point).norm() - r;
+    if (distance < best)
+    {
+      best = distance;
+      Hint = index;
+    }
+  }
+
+  const TriangleMesh& Mesh;
+  const std::vector<double>& Radii;
+  std::vector<Vector3> Centres;
+  std::vector<double> Reach;
+  std::vector<double> LargestRadius;
+  std::size_t Hint = 0;
+};
+
+/// Points of the thick surface: each vertex's sphere along its normal both
+/// ways, and each triangle's centre likewise.
+std::vector<Vector3> thickSurfaceSamples(const TriangleMesh& mesh, const std::vector<double>& radii)
+{
+  std::vector<Vector3> vertexNormals(mesh.vertexCount(), Vector3::Zero());
+  for (const Triangle& t : mesh.triangles)
+  {
+    const Vector3 normal = (mesh.positions[t[1]] - mesh.positions[t[0]])
+                             .cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+    for (int k : t)
+    {
+      vertexNormals[k] += normal;
+    }
+  }
+  std::vector<Vector3> samples;
+  for (std::size_t i = 0; i < mesh.vertexCount(); ++i)
+  {
+    const Vector3 normal = vertexNormals[i].normalized();
+    samples.push_back(mesh.positions[i] + radii[i] * normal);
+    samples.push_back(mesh.positions[i] - radii[i] * normal);
+  }
+  for (const Triangle& t : mesh.triangles)
+  {
+    const Vector3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    const double r = (radii[t[0]] + radii[t[1]] + radii[t[2]]) / 3.0;
+    const Vector3 normal = (mesh.positions[t[1]] - mesh.positions[t[0]])
+                             .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
+                             .normalized();
+    samples.push_back(c + r * normal);
+    samples.push_back(c - r * normal);
+  }
+  return samples;
+}
+
+/// The two one-sided distances between the visual surface and the thick
+/// collision surface, and the Hausdorff distance, the larger.
+void measureHausdorff(const TriangleMesh& visual,
+  const std::vector<double>& radii,
+  double extent,
+  GeneratedCollisionMesh& result)
+{
+  ThickSurfaceDistance thickDistance(result.mesh, radii);
+  for (const Vector3& x : visual.positions)
+  {
+    result.visualToThick = std::max(result.visualToThick, std::abs(thickDistance(x)));
+  }
+  for (const Vector3& x : thickSurfaceSamples(result.mesh, radii))
+  {
+    // Only points on the thick surface's outside count (a sample inside
+    // another part of the thick surface is not on its boundary).
+    if (thickDistance(x) >= -1e-9 * extent)
+    {
+      result.thickToVisual = std::max(result.thickToVisual, distanceToSurface(visual, x));
+    }
+  }
+  result.hausdorffDistance = std::max(result.visualToThick, result.thickToVisual);
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -1218,98 +1342,7 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
 
   // Two-sided Hausdorff distance to the thick surface.
   report(progress, 0.7, "measuring the Hausdorff distance");
-  std::vector<Vector3> vertexNormals(mesh.vertexCount(), Vector3::Zero());
-  for (const Triangle& t : mesh.triangles)
-  {
-    const Vector3 normal = (mesh.positions[t[1]] - mesh.positions[t[0]])
-                             .cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
-    for (int k : t)
-    {
-      vertexNormals[k] += normal;
-    }
-  }
-  for (Vector3& normal : vertexNormals)
-  {
-    normal.normalize();
-  }
-  // Signed distance to the thick surface, exact: a triangle is skipped when
-  // its bounding sphere, grown by its largest radius, cannot beat the best
-  // so far; the previous query's best triangle goes first (neighbouring
-  // queries are near each other).
-  std::vector<Vector3> centres(mesh.triangleCount());
-  std::vector<double> reach(mesh.triangleCount());
-  std::vector<double> largestRadius(mesh.triangleCount());
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-  {
-    const Triangle& c = mesh.triangles[t];
-    centres[t] = (mesh.positions[c[0]] + mesh.positions[c[1]] + mesh.positions[c[2]]) / 3.0;
-    reach[t] = 0.0;
-    largestRadius[t] = 0.0;
-    for (int k : c)
-    {
-      reach[t] = std::max(reach[t], (mesh.positions[k] - centres[t]).norm());
-      largestRadius[t] = std::max(largestRadius[t], radii[k]);
-    }
-  }
-  std::size_t hint = 0;
-  auto thickDistance = [&](const Vector3& x)
-  {
-    double best = Infinity;
-    auto visit = [&](std::size_t index)
-    {
-      if ((x - centres[index]).norm() - reach[index] - largestRadius[index] >= best)
-      {
-        return;
-      }
-      const Triangle& t = mesh.triangles[index];
-      const TriangleClosestPoint closest = closestPointOnTriangleWithBarycentric(
-        x, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
-      const double r = closest.barycentric[0] * radii[t[0]] + closest.barycentric[1] * radii[t[1]] +
-                       closest.barycentric[2] * radii[t[2]];
-      const double distance = (x - closest.point).norm() - r;
-      if (distance < best)
-      {
-        best = distance;
-        hint = index;
-      }
-    };
-    visit(hint);
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-    {
-      visit(t);
-    }
-    return best;
-  };
-  for (const Vector3& x : visual.positions)
-  {
-    result.visualToThick = std::max(result.visualToThick, std::abs(thickDistance(x)));
-  }
-  std::vector<Vector3> samples;
-  for (std::size_t i = 0; i < mesh.vertexCount(); ++i)
-  {
-    samples.push_back(mesh.positions[i] + radii[i] * vertexNormals[i]);
-    samples.push_back(mesh.positions[i] - radii[i] * vertexNormals[i]);
-  }
-  for (const Triangle& t : mesh.triangles)
-  {
-    const Vector3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-    const double r = (radii[t[0]] + radii[t[1]] + radii[t[2]]) / 3.0;
-    const Vector3 normal = (mesh.positions[t[1]] - mesh.positions[t[0]])
-                             .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
-                             .normalized();
-    samples.push_back(c + r * normal);
-    samples.push_back(c - r * normal);
-  }
-  for (const Vector3& x : samples)
-  {
-    // Only points on the thick surface's outside count (a sample inside
-    // another part of the thick surface is not on its boundary).
-    if (thickDistance(x) >= -1e-9 * extent)
-    {
-      result.thickToVisual = std::max(result.thickToVisual, distanceToSurface(visual, x));
-    }
-  }
-  result.hausdorffDistance = std::max(result.visualToThick, result.thickToVisual);
+  measureHausdorff(visual, radii, extent, result);
   report(progress, 1.0, "done");
   return result;
 }

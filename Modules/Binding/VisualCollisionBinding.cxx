@@ -503,20 +503,12 @@ std::string claimRimPoint(const TriangleMesh& visual,
   return {};
 }
 
-/// 5.2.1: the visual point of every collision vertex and side: a visual
-/// vertex, or for a border collision vertex possibly a point inside a
-/// visual edge (inserted as a vertex before the paths are computed).
-std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMesh& visual,
-  const TriangleMeshAdjacency& visualAdjacency,
-  const TriangleBvh& visualBvh,
-  const TriangleMesh& collision,
-  const std::vector<double>& radii,
-  const CollisionTopology& topology,
-  const VisualCollisionBindingSettings& settings)
+/// Outward direction of each border vertex in the collision surface:
+/// across its border edges, away from their triangles (zero inside).
+std::vector<Vector3> outwardDirections(const TriangleMesh& collision,
+  const CollisionTopology& topology)
 {
   const std::size_t n = collision.vertexCount();
-  // Outward direction of each border vertex in the collision surface:
-  // across its border edges, away from their triangles.
   std::vector<Vector3> outward(n, Vector3::Zero());
   for (const Triangle& t : collision.triangles)
   {
@@ -547,6 +539,15 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
       }
     }
   }
+  return outward;
+}
+
+/// Per collision vertex: how far from where its normal meets the surface
+/// a paired visual vertex may lie (beyond, a point inside a visual edge
+/// there is a candidate too).
+std::vector<double> snapDistances(const TriangleMesh& collision, const CollisionTopology& topology)
+{
+  const std::size_t n = collision.vertexCount();
   // A paired vertex this close to where the normal meets the surface
   // keeps the pairing on visual vertices: a quarter of the shortest
   // collision edge at the vertex.
@@ -559,6 +560,103 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
     snapDistance[edge[0]] = std::min(snapDistance[edge[0]], length);
     snapDistance[edge[1]] = std::min(snapDistance[edge[1]], length);
   }
+  return snapDistance;
+}
+
+/// The claims resolved: no visual vertex serves two collision vertices, the
+/// closest claims choose first and the others take their next candidate.
+std::vector<std::array<SurfacePoint, 2>> resolveClaims(const TriangleMesh& visual,
+  const TriangleMesh& collision,
+  const CollisionTopology& topology,
+  const std::vector<PairingClaim>& claims)
+{
+  const std::size_t n = collision.vertexCount();
+  std::vector<std::size_t> order;
+  for (std::size_t c = 0; c < claims.size(); ++c)
+  {
+    if (!claims[c].candidates.empty())
+    {
+      order.push_back(c);
+    }
+  }
+  std::sort(order.begin(),
+    order.end(),
+    [&](std::size_t x, std::size_t y)
+    {
+      const auto& cx = claims[x].candidates.front();
+      const auto& cy = claims[y].candidates.front();
+      return cx.first != cy.first ? cx.first < cy.first : x < y;
+    });
+  std::vector<char> taken(visual.vertexCount(), 0);
+  // Edge points taken, per edge: parameters (another point on the edge
+  // must keep EdgePointMargin away, or the two would merge).
+  std::unordered_map<std::uint64_t, std::vector<double>> takenOnEdge;
+  std::vector<std::array<SurfacePoint, 2>> paired(n);
+  std::vector<std::array<char, 2>> found(n, { { 0, 0 } });
+  for (std::size_t c : order)
+  {
+    const PairingClaim& claim = claims[c];
+    for (const auto& [distance, point] : claim.candidates)
+    {
+      if (point.isVertex())
+      {
+        if (taken[point.vertex])
+        {
+          continue;
+        }
+        taken[point.vertex] = 1;
+      }
+      else
+      {
+        auto& onEdge = takenOnEdge[edgeKey(point.edgeStart, point.edgeEnd)];
+        const bool crowded = std::any_of(onEdge.begin(),
+          onEdge.end(),
+          [&](double t) { return std::abs(t - point.edgeParameter) < EdgePointMargin; });
+        if (crowded)
+        {
+          continue;
+        }
+        onEdge.push_back(point.edgeParameter);
+      }
+      paired[claim.collisionVertex][claim.slot] = point;
+      found[claim.collisionVertex][claim.slot] = 1;
+      break;
+    }
+    if (!found[claim.collisionVertex][claim.slot])
+    {
+      throw InvalidInputError(
+        "collision vertex " + std::to_string(claim.collisionVertex) + " of " +
+        nameOf(collision, "collision") + " finds no free visual vertex on its " +
+        (topology.borderVertex[claim.collisionVertex]
+            ? "rim"
+            : (claim.slot == 0 ? "positive side" : "negative side")) +
+        ": its neighbours took them all (the visual mesh is too coarse there)");
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    if (topology.borderVertex[v])
+    {
+      paired[v][1] = paired[v][0];
+    }
+  }
+  return paired;
+}
+
+/// 5.2.1: the visual point of every collision vertex and side: a visual
+/// vertex, or for a border collision vertex possibly a point inside a
+/// visual edge (inserted as a vertex before the paths are computed).
+std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMesh& visual,
+  const TriangleMeshAdjacency& visualAdjacency,
+  const TriangleBvh& visualBvh,
+  const TriangleMesh& collision,
+  const std::vector<double>& radii,
+  const CollisionTopology& topology,
+  const VisualCollisionBindingSettings& settings)
+{
+  const std::size_t n = collision.vertexCount();
+  const std::vector<Vector3> outward = outwardDirections(collision, topology);
+  const std::vector<double> snapDistance = snapDistances(collision, topology);
   std::vector<PairingClaim> claims(2 * n);
   std::vector<std::string> errors(2 * n);
   tbb::parallel_for(std::size_t(0),
@@ -652,78 +750,7 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
       throw InvalidInputError(error);
     }
   }
-  // No visual vertex serves two collision vertices: the closest claims
-  // choose first, the others take their next candidate.
-  std::vector<std::size_t> order;
-  for (std::size_t c = 0; c < claims.size(); ++c)
-  {
-    if (!claims[c].candidates.empty())
-    {
-      order.push_back(c);
-    }
-  }
-  std::sort(order.begin(),
-    order.end(),
-    [&](std::size_t x, std::size_t y)
-    {
-      const auto& cx = claims[x].candidates.front();
-      const auto& cy = claims[y].candidates.front();
-      return cx.first != cy.first ? cx.first < cy.first : x < y;
-    });
-  std::vector<char> taken(visual.vertexCount(), 0);
-  // Edge points taken, per edge: parameters (another point on the edge
-  // must keep EdgePointMargin away, or the two would merge).
-  std::unordered_map<std::uint64_t, std::vector<double>> takenOnEdge;
-  std::vector<std::array<SurfacePoint, 2>> paired(n);
-  std::vector<std::array<char, 2>> found(n, { { 0, 0 } });
-  for (std::size_t c : order)
-  {
-    const PairingClaim& claim = claims[c];
-    for (const auto& [distance, point] : claim.candidates)
-    {
-      if (point.isVertex())
-      {
-        if (taken[point.vertex])
-        {
-          continue;
-        }
-        taken[point.vertex] = 1;
-      }
-      else
-      {
-        auto& onEdge = takenOnEdge[edgeKey(point.edgeStart, point.edgeEnd)];
-        const bool crowded = std::any_of(onEdge.begin(),
-          onEdge.end(),
-          [&](double t) { return std::abs(t - point.edgeParameter) < EdgePointMargin; });
-        if (crowded)
-        {
-          continue;
-        }
-        onEdge.push_back(point.edgeParameter);
-      }
-      paired[claim.collisionVertex][claim.slot] = point;
-      found[claim.collisionVertex][claim.slot] = 1;
-      break;
-    }
-    if (!found[claim.collisionVertex][claim.slot])
-    {
-      throw InvalidInputError(
-        "collision vertex " + std::to_string(claim.collisionVertex) + " of " +
-        nameOf(collision, "collision") + " finds no free visual vertex on its " +
-        (topology.borderVertex[claim.collisionVertex]
-            ? "rim"
-            : (claim.slot == 0 ? "positive side" : "negative side")) +
-        ": its neighbours took them all (the visual mesh is too coarse there)");
-    }
-  }
-  for (std::size_t v = 0; v < n; ++v)
-  {
-    if (topology.borderVertex[v])
-    {
-      paired[v][1] = paired[v][0];
-    }
-  }
-  return paired;
+  return resolveClaims(visual, collision, topology, claims);
 }
 
 /// Binding of one region's vertices (5.2.4): boundary on the collision
