@@ -7,6 +7,7 @@
 #include "ProximityQueries.h"
 #include "SparseHexahedralGrid.h"
 #include "ThinTissueError.h"
+#include "TriangleBvh.h"
 #include "TriangleMeshAdjacency.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -1238,13 +1239,16 @@ void measureHausdorff(const TriangleMesh& visual,
   {
     result.visualToThick = std::max(result.visualToThick, std::abs(thickDistance(x)));
   }
+  TriangleBvh visualTree;
+  visualTree.build(visual.positions, visual.triangles, {}, 0.0);
   for (const Vector3& x : thickSurfaceSamples(result.mesh, radii))
   {
     // Only points on the thick surface's outside count (a sample inside
     // another part of the thick surface is not on its boundary).
     if (thickDistance(x) >= -1e-9 * extent)
     {
-      result.thickToVisual = std::max(result.thickToVisual, distanceToSurface(visual, x));
+      result.thickToVisual =
+        std::max(result.thickToVisual, distanceToSurface(visual, visualTree, x));
     }
   }
   result.hausdorffDistance = std::max(result.visualToThick, result.thickToVisual);

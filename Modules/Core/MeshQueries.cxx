@@ -1,6 +1,7 @@
 #include "MeshQueries.h"
 
 #include "ProximityQueries.h"
+#include "TriangleBvh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,6 +44,48 @@ double distanceToSurface(const TriangleMesh& mesh, const Vector3& point)
     const Vector3 q = closestPointOnTriangle(
       point, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
     best = std::min(best, (q - point).squaredNorm());
+  }
+  return std::sqrt(best);
+}
+
+double distanceToSurface(const TriangleMesh& mesh, const TriangleBvh& bvh, const Vector3& point)
+{
+  const auto& nodes = bvh.nodes();
+  if (nodes.empty())
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  double best = std::numeric_limits<double>::infinity(); // squared
+  constexpr int StackSize = 128;
+  int stack[StackSize];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0)
+  {
+    const TriangleBvh::Node& node = nodes[stack[--top]];
+    if (node.box.squaredExteriorDistance(point) >= best)
+    {
+      continue;
+    }
+    if (node.isLeaf())
+    {
+      for (int i = node.firstTriangle; i < node.firstTriangle + node.triangleCount; ++i)
+      {
+        const Triangle& t = mesh.triangles[bvh.leafTriangles()[i]];
+        const Vector3 q = closestPointOnTriangle(
+          point, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+        best = std::min(best, (q - point).squaredNorm());
+      }
+      continue;
+    }
+    const int left = static_cast<int>(&node - nodes.data()) + 1;
+    const int right = node.rightChild;
+    const bool leftFirst = nodes[left].box.squaredExteriorDistance(point) <=
+                           nodes[right].box.squaredExteriorDistance(point);
+    // The nearer child is popped first; a median-split tree is at most
+    // about log2(n) deep, far below the stack's size.
+    stack[top++] = leftFirst ? right : left;
+    stack[top++] = leftFirst ? left : right;
   }
   return std::sqrt(best);
 }

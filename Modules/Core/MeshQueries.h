@@ -26,6 +26,16 @@ THINTISSUECORE_EXPORT Vector3 closestPointOnTriangle(const Vector3& point,
 /// meaningful: returns +infinity).
 THINTISSUECORE_EXPORT double distanceToSurface(const TriangleMesh& mesh, const Vector3& point);
 
+class TriangleBvh;
+
+/// The same through `bvh`, built over the mesh's triangles (any radii and
+/// margin: boxes only prune): nodes nearer than the best so far are
+/// visited, nearest child first, so a query costs about a logarithm of the
+/// mesh size.
+THINTISSUECORE_EXPORT double distanceToSurface(const TriangleMesh& mesh,
+  const TriangleBvh& bvh,
+  const Vector3& point);
+
 /// Parameter t at which the line origin + t * direction meets triangle
 /// (a, b, c), with `tolerance` on the barycentric coordinates so that hits
 /// on shared edges count (Möller-Trumbore); NaN when it misses or runs

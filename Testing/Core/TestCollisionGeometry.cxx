@@ -634,3 +634,31 @@ TEST(ProximityQueries, TriangleTriangleIntersectingFlag)
   EXPECT_FALSE(
     triangleTriangleProximity(apart, { 0.0, 0.0, 0.0 }, b, { 0.0, 0.0, 0.0 }, 0.0).intersecting);
 }
+
+// The distance to a surface through its tree equals the brute-force one
+// (the tree only prunes), for points inside and far outside the cloud,
+// whatever radii and margin the tree was built with.
+TEST(TriangleBvh, DistanceToSurfaceMatchesBruteForce)
+{
+  for (unsigned seed : { 1u, 2u, 3u })
+  {
+    const RandomMesh random = makeRandomMesh(seed, 300);
+    TriangleMesh mesh;
+    mesh.positions = random.positions;
+    mesh.triangles = random.triangles;
+    TriangleBvh tree;
+    tree.build(mesh.positions,
+      mesh.triangles,
+      seed == 3 ? random.radii : std::vector<double>(),
+      seed == 2 ? 0.05 : 0.0);
+    std::mt19937 points(200 + seed);
+    std::uniform_real_distribution<double> coordinate(-1.0, 2.0);
+    for (int i = 0; i < 200; ++i)
+    {
+      const Vector3 x(coordinate(points), coordinate(points), coordinate(points));
+      EXPECT_DOUBLE_EQ(distanceToSurface(mesh, tree, x), distanceToSurface(mesh, x));
+    }
+  }
+  TriangleBvh empty;
+  EXPECT_TRUE(std::isinf(distanceToSurface(TriangleMesh{}, empty, Vector3::Zero())));
+}
