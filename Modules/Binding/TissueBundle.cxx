@@ -75,6 +75,18 @@ std::optional<LengthUnits> unitsFromMetadata(const std::string& metadata)
   return LengthUnits{ units.value("name", std::string()), scale };
 }
 
+/// The quality report recorded in a bundle's metadata (toJson's text), or
+/// an empty text.
+std::string storedQuality(const std::string& metadata)
+{
+  const nlohmann::json json = nlohmann::json::parse(metadata, nullptr, false);
+  if (json.is_discarded() || !json.is_object() || !json.contains("quality"))
+  {
+    return {};
+  }
+  return json["quality"].dump();
+}
+
 void requireOnePiece(const TriangleMesh& visual)
 {
   const std::size_t pieces = countPieces(visual);
@@ -323,7 +335,13 @@ TissueBundle bundleOf(const std::string& path,
     throw FileError(
       path, std::string("tissue bundle: its hexahedra do not hold its meshes: ") + error.what());
   }
-  bundle.quality = measureTissueQuality(bundle.binding);
+  // The preparation's report, kept in the metadata; measured again only
+  // for a bundle without one (it costs about as much as the rest of the
+  // reading).
+  if (!bundle.quality.fromJson(storedQuality(bundle.metadata)))
+  {
+    bundle.quality = measureTissueQuality(bundle.binding);
+  }
   bundle.units = unitsFromMetadata(bundle.metadata);
   return bundle;
 }

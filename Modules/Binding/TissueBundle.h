@@ -18,8 +18,9 @@
 //
 // Quality: each preparation measures how well the collision mesh represents
 // the visual surface (TissueQuality.h), kept in the metadata under
-// "quality"; reading a bundle measures it again (derived data, like the
-// embeddings).
+// "quality"; reading a bundle takes it from there (measuring it costs about
+// as much as the rest of reading) and measures it again only for a bundle
+// without one.
 //
 // Several tissues: a visual mesh of several pieces (both menisci in one
 // segmentation) is prepared by prepareTissues, one tissue per large piece,

@@ -518,6 +518,47 @@ std::string TissueQuality::toJson() const
   return json.dump();
 }
 
+bool TissueQuality::fromJson(const std::string& text)
+{
+  auto point = [](const nlohmann::json& x)
+  { return Vector3(x.at(0).get<double>(), x.at(1).get<double>(), x.at(2).get<double>()); };
+  try
+  {
+    const nlohmann::json json = nlohmann::json::parse(text);
+    TissueQuality q;
+    q.hausdorffDistance = json.at("hausdorffDistance").get<double>();
+    q.largestThickness = json.at("largestThickness").get<double>();
+    q.relativeDeviation95 = json.at("relativeDeviation95").get<double>();
+    const nlohmann::json& d = json.at("worstDeviation");
+    q.worstDeviation.relative = d.at("relativeToLocalThickness").get<double>();
+    q.worstDeviation.distance = d.at("distance").get<double>();
+    q.worstDeviation.localThickness = d.at("localThickness").get<double>();
+    q.worstDeviation.point = point(d.at("point"));
+    q.worstDeviation.collisionTriangle = d.at("collisionTriangle").get<int>();
+    q.worstDeviation.fromVisual = d.at("direction").get<std::string>() == "visual to thick";
+    const nlohmann::json& v = json.at("visualVerticesPerCollisionTriangle");
+    q.fewestVisualVerticesPerTriangle = v.at("fewest").get<int>();
+    q.meanVisualVerticesPerTriangle = v.at("mean").get<double>();
+    q.mostVisualVerticesPerTriangle = v.at("most").get<int>();
+    q.sparsestCollisionTriangle = v.at("sparsestCollisionTriangle").get<int>();
+    const nlohmann::json& r = json.at("worstBindingRegion");
+    q.worstRegion.collisionTriangle = r.at("collisionTriangle").get<int>();
+    q.worstRegion.side = r.at("side").get<int>();
+    q.worstRegion.visualVertices = r.at("visualVertices").get<int>();
+    q.worstRegion.visualTriangles = r.at("visualTriangles").get<int>();
+    q.worstRegion.foldedTriangles = r.at("foldedTriangles").get<int>();
+    q.worstRegion.areaDistortion = r.at("areaDistortion").get<double>();
+    q.worstRegion.centre = point(r.at("centre"));
+    q.warnings = json.at("warnings").get<std::vector<std::string>>();
+    *this = std::move(q);
+    return true;
+  }
+  catch (const nlohmann::json::exception&)
+  {
+    return false;
+  }
+}
+
 std::string TissueQuality::summary(const std::string& unit) const
 {
   const std::string u = unit.empty() ? std::string() : " " + unit;

@@ -116,6 +116,10 @@ struct THINTISSUEBINDING_EXPORT TissueQuality
 
   /// The report as a JSON object (text).
   std::string toJson() const;
+  /// The report read back from toJson's text (a bundle's metadata
+  /// "quality"); false, and the report untouched, when the text is not such
+  /// a report.
+  bool fromJson(const std::string& json);
   /// Lines for the console; `unit` (e.g. "mm") follows lengths.
   std::string summary(const std::string& unit = {}) const;
 };

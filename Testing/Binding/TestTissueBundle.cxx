@@ -147,10 +147,41 @@ TEST(TissueBundle, UnitsGivenOrDetectedAreRecordedAndReadBack)
   old.metadata = "{\"generator\": \"ThinTissue prepareTissue\"}";
   writeTissueBundle(path, old);
   EXPECT_FALSE(readTissueBundle(path).units.has_value());
+  // ... and its quality is measured again, the same as recorded.
+  EXPECT_EQ(readTissueBundle(path).quality.toJson(), given.quality.toJson());
   writeBindingCache(path, given.binding, 0, &given.simulation);
   const TissueBundle bare = readTissueBundle(path);
   EXPECT_FALSE(bare.units.has_value());
   EXPECT_EQ(bare.collision.vertexCount(), 60u);
+  std::filesystem::remove(path);
+}
+
+// The quality report is read back from the metadata, not measured again
+// (it costs about as much as the rest of reading): what is in the file is
+// what comes back, field for field.
+TEST(TissueQuality, ReadBackFromTheMetadata)
+{
+  const TissueBundle prepared = prepareTissue(makeMeniscus().visual, meniscusSettings(60));
+  TissueQuality read;
+  ASSERT_TRUE(read.fromJson(prepared.quality.toJson()));
+  EXPECT_EQ(read.toJson(), prepared.quality.toJson());
+  EXPECT_EQ(read.worstRegion.collisionTriangle, prepared.quality.worstRegion.collisionTriangle);
+  EXPECT_EQ(read.worstDeviation.fromVisual, prepared.quality.worstDeviation.fromVisual);
+  // Not a report: false, nothing changed.
+  TissueQuality untouched = read;
+  EXPECT_FALSE(untouched.fromJson("{\"hausdorffDistance\": 1}"));
+  EXPECT_FALSE(untouched.fromJson("not json"));
+  EXPECT_EQ(untouched.toJson(), read.toJson());
+  // A bundle whose recorded report differs from what its meshes give
+  // reports what it recorded: reading trusts the file's report.
+  TissueBundle edited = prepared;
+  TissueQuality other = prepared.quality;
+  other.relativeDeviation95 = 0.123;
+  addBundleMetadata(edited, "quality", other.toJson());
+  const std::string path =
+    (thintissue::testing::temporaryDirectory() / "quality.ttbundle").string();
+  writeTissueBundle(path, edited);
+  EXPECT_DOUBLE_EQ(readTissueBundle(path).quality.relativeDeviation95, 0.123);
   std::filesystem::remove(path);
 }
 
