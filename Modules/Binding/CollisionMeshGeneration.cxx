@@ -1355,19 +1355,6 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
 namespace
 {
 
-/// Genus of a closed connected surface from its Euler characteristic.
-int genusOf(const TriangleMesh& mesh)
-{
-  std::vector<char> used(mesh.vertexCount(), 0);
-  long vertices = 0;
-  for (const Triangle& t : mesh.triangles)
-    for (int v : t)
-      vertices += used[v] ? 0 : (used[v] = 1);
-  const long edges = static_cast<long>(TriangleMeshAdjacency(mesh).edgeCount());
-  const long euler = vertices - edges + static_cast<long>(mesh.triangleCount());
-  return static_cast<int>((2 - euler) / 2);
-}
-
 /// The raster cells of the shadow's small holes (fewer than `largest`
 /// cells), grown by `margin` cells, and how many such holes there are.
 std::vector<char> tunnelFootprints(const ShadowRaster& raster,
@@ -1405,7 +1392,7 @@ TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* 
   TunnelClosingReport& r = report ? *report : local;
   r = TunnelClosingReport{};
   checkVisual(visual);
-  r.genusBefore = r.genusAfter = genusOf(visual);
+  r.genusBefore = r.genusAfter = TriangleMeshAdjacency(visual).closedSurfaceGenus();
   if (r.genusBefore <= 0)
     return visual;
   const ProjectedSurface surface = projectionAlongThickness(visual);
@@ -1451,7 +1438,9 @@ TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* 
     closed.name = visual.name;
   }
   const MeshValidationReport validation = validateTriangleMesh(closed);
-  const int genus = validation.isClosedOutwardSingleSurface() ? genusOf(closed) : r.genusBefore;
+  const int genus = validation.isClosedOutwardSingleSurface()
+                      ? TriangleMeshAdjacency(closed).closedSurfaceGenus()
+                      : r.genusBefore;
   if (genus >= r.genusBefore)
     return visual;
   r.genusAfter = genus;

@@ -1028,16 +1028,6 @@ std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
   return paths;
 }
 
-/// Genus of a closed connected surface: the holes through it (a tear's gap
-/// through the thickness, or a segmentation's tunnels).
-long genusOfSurface(const TriangleMesh& mesh, const TriangleMeshAdjacency& adjacency)
-{
-  const long euler = static_cast<long>(mesh.vertexCount()) -
-                     static_cast<long>(adjacency.edgeCount()) +
-                     static_cast<long>(mesh.triangleCount());
-  return (2 - euler) / 2;
-}
-
 /// The side (+1 / -1) of every triangle of the visual surface cut along the
 /// rim paths: each piece the rim paths bound (flood fill) takes the side of
 /// the collision vertices' paired visual vertices in it; a piece without
@@ -1129,7 +1119,7 @@ std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
                               "the rim paths (the collision normals are not consistent, the "
                               "border does not run around the visual rim, or tunnels through "
                               "the tissue join its sides: the visual surface has genus " +
-                              std::to_string(genusOfSurface(mesh, adjacency)) + ")");
+                              std::to_string(adjacency.closedSurfaceGenus()) + ")");
     }
     sideOfPiece[p] = votes[p][0] > 0 ? 1 : (votes[p][1] > 0 ? -1 : 0);
     needOffsets = needOffsets || sideOfPiece[p] == 0;

@@ -109,4 +109,16 @@ int TriangleMeshAdjacency::findEdge(int a, int b) const
   return -1;
 }
 
+int TriangleMeshAdjacency::closedSurfaceGenus() const
+{
+  long vertices = 0;
+  for (std::size_t v = 0; v + 1 < VertexTriangleOffsets.size(); ++v)
+  {
+    vertices += VertexTriangleOffsets[v + 1] > VertexTriangleOffsets[v] ? 1 : 0;
+  }
+  const long euler =
+    vertices - static_cast<long>(Edges.size()) + static_cast<long>(TriangleEdges.size());
+  return static_cast<int>((2 - euler) / 2);
+}
+
 } // namespace thintissue

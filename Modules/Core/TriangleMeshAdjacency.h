@@ -58,6 +58,10 @@ public:
   /// Index of the edge joining a and b, or -1.
   int findEdge(int a, int b) const;
   bool isBorderEdge(int e) const { return edgeTriangleCount(e) == 1; }
+  /// Genus of the surface, taken as closed and connected: the holes through
+  /// it (a tear's gap, a segmentation's tunnels), from its Euler
+  /// characteristic over the vertices that have a triangle.
+  int closedSurfaceGenus() const;
 
 private:
   std::vector<std::array<int, 2>> Edges;

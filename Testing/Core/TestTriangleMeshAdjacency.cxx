@@ -55,3 +55,38 @@ TEST(TriangleMeshAdjacency, OpenTriangleAndLookups)
   EXPECT_EQ(adjacency.vertexTriangleCount(0), 2);
   EXPECT_EQ(adjacency.vertexTriangleCount(3), 1);
 }
+
+// Genus from the Euler characteristic: a closed octahedron has none, a
+// torus (a grid wrapped both ways) one; vertices without a triangle do not
+// count.
+TEST(TriangleMeshAdjacency, ClosedSurfaceGenus)
+{
+  auto torus = [](int n, int m)
+  {
+    TriangleMesh mesh;
+    mesh.positions.resize(static_cast<std::size_t>(n) * m, Vector3::Zero());
+    auto at = [&](int i, int j) { return ((i + n) % n) * m + (j + m) % m; };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < m; ++j)
+      {
+        mesh.triangles.push_back({ at(i, j), at(i + 1, j), at(i + 1, j + 1) });
+        mesh.triangles.push_back({ at(i, j), at(i + 1, j + 1), at(i, j + 1) });
+      }
+    return mesh;
+  };
+  TriangleMesh ring = torus(6, 4);
+  EXPECT_EQ(TriangleMeshAdjacency(ring).closedSurfaceGenus(), 1);
+  ring.positions.push_back(Vector3::Zero()); // unreferenced: not counted
+  EXPECT_EQ(TriangleMeshAdjacency(ring).closedSurfaceGenus(), 1);
+  TriangleMesh octahedron;
+  octahedron.positions.resize(6, Vector3::Zero());
+  octahedron.triangles = { { 0, 2, 4 },
+    { 2, 1, 4 },
+    { 1, 3, 4 },
+    { 3, 0, 4 },
+    { 2, 0, 5 },
+    { 1, 2, 5 },
+    { 3, 1, 5 },
+    { 0, 3, 5 } };
+  EXPECT_EQ(TriangleMeshAdjacency(octahedron).closedSurfaceGenus(), 0);
+}
