@@ -1484,6 +1484,85 @@ std::vector<int> separateTouchingPaths(RemeshedSurface& remeshed)
   return detours;
 }
 
+/// 5.2.4 inside each region: mean value coordinates, the boundary fixed on
+/// the collision triangle laid out in its own plane (accumulated path
+/// length along each side).
+void parameteriseRegions(VisualCollisionBinding& binding,
+  const TriangleMesh& collision,
+  const CollisionTopology& topology,
+  const PathsOfEdges& pathFor,
+  const std::vector<std::vector<int>>& regionTriangles,
+  const std::vector<std::vector<double>>& pathFractions,
+  const BindingProgress& progress)
+{
+  const TriangleMesh& mesh = binding.visual;
+  RegionParameterisation parameterisation(mesh.positions.size());
+  std::vector<std::pair<int, Vector2>> boundary;
+  for (std::size_t t = 0; t < collision.triangles.size(); ++t)
+  {
+    const Triangle& ct = collision.triangles[t];
+    const Vector3& p0 = collision.positions[ct[0]];
+    const Vector3& p1 = collision.positions[ct[1]];
+    const Vector3& p2 = collision.positions[ct[2]];
+    const double l01 = (p1 - p0).norm();
+    const Vector3 x = (p1 - p0) / l01;
+    const Vector3 y = (p2 - p0 - (p2 - p0).dot(x) * x).normalized();
+    const std::array<Vector2, 3> corners{
+      { Vector2(0.0, 0.0), Vector2(l01, 0.0), Vector2((p2 - p0).dot(x), (p2 - p0).dot(y)) }
+    };
+    for (int side : { 1, -1 })
+    {
+      boundary.clear();
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = ct[k];
+        const int b = ct[(k + 1) % 3];
+        const int edge = binding.collisionEdgeIndex(a, b);
+        const int p = pathFor(edge, side);
+        const bool forward = topology.edges[edge][0] == a;
+        const auto& pv = binding.paths[p].visualVertices;
+        for (std::size_t i = 0; i < pv.size(); ++i)
+        {
+          const double fromA = forward ? pathFractions[p][i] : 1.0 - pathFractions[p][i];
+          const Vector2 position = (1.0 - fromA) * corners[k] + fromA * corners[(k + 1) % 3];
+          boundary.emplace_back(pv[i], position);
+        }
+      }
+      parameterisation.solve(
+        mesh, regionTriangles[2 * t + (side < 0 ? 1 : 0)], boundary, corners, binding.vertices);
+    }
+    if (t % 16 == 0)
+    {
+      report(progress,
+        0.85 + 0.15 * static_cast<double>(t) / collision.triangles.size(),
+        "assigning local parameters");
+    }
+  }
+}
+
+/// The geodesic paths to find (5.2.2): one per border edge (the rim path),
+/// two per inner edge (a positive and a negative one).
+void collectPathRequests(const VisualCollisionBinding& binding,
+  const CollisionTopology& topology,
+  std::vector<PathRequest>& rimRequests,
+  std::vector<PathRequest>& innerRequests)
+{
+  for (std::size_t e = 0; e < topology.edges.size(); ++e)
+  {
+    const auto& edge = topology.edges[e];
+    const auto& a = binding.pairedVisualVertices[edge[0]];
+    const auto& b = binding.pairedVisualVertices[edge[1]];
+    if (topology.edgeTriangleCount[e] == 1)
+    {
+      rimRequests.push_back({ static_cast<int>(e), 0, a[0], b[0] });
+      continue;
+    }
+    const bool chord = topology.borderVertex[edge[0]] && topology.borderVertex[edge[1]];
+    innerRequests.push_back({ static_cast<int>(e), 1, a[0], b[0], chord });
+    innerRequests.push_back({ static_cast<int>(e), -1, a[1], b[1], chord });
+  }
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -1544,20 +1623,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   report(progress, 0.1, "computing geodesic paths");
   std::vector<PathRequest> rimRequests;
   std::vector<PathRequest> innerRequests;
-  for (std::size_t e = 0; e < topology.edges.size(); ++e)
-  {
-    const auto& edge = topology.edges[e];
-    const auto& a = binding.pairedVisualVertices[edge[0]];
-    const auto& b = binding.pairedVisualVertices[edge[1]];
-    if (topology.edgeTriangleCount[e] == 1)
-    {
-      rimRequests.push_back({ static_cast<int>(e), 0, a[0], b[0] });
-      continue;
-    }
-    const bool chord = topology.borderVertex[edge[0]] && topology.borderVertex[edge[1]];
-    innerRequests.push_back({ static_cast<int>(e), 1, a[0], b[0], chord });
-    innerRequests.push_back({ static_cast<int>(e), -1, a[1], b[1], chord });
-  }
+  collectPathRequests(binding, topology, rimRequests, innerRequests);
   const double pathsDone = static_cast<double>(rimRequests.size() + innerRequests.size());
   RemeshedSurface rimmed;
   {
@@ -1645,48 +1711,8 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
 
   // Mean value coordinates per region, the boundary fixed on the collision
   // triangle (laid out in its own plane).
-  RegionParameterisation parameterisation(mesh.positions.size());
-  std::vector<std::pair<int, Vector2>> boundary;
-  for (std::size_t t = 0; t < collision.triangles.size(); ++t)
-  {
-    const Triangle& ct = collision.triangles[t];
-    const Vector3& p0 = collision.positions[ct[0]];
-    const Vector3& p1 = collision.positions[ct[1]];
-    const Vector3& p2 = collision.positions[ct[2]];
-    const double l01 = (p1 - p0).norm();
-    const Vector3 x = (p1 - p0) / l01;
-    const Vector3 y = (p2 - p0 - (p2 - p0).dot(x) * x).normalized();
-    const std::array<Vector2, 3> corners{
-      { Vector2(0.0, 0.0), Vector2(l01, 0.0), Vector2((p2 - p0).dot(x), (p2 - p0).dot(y)) }
-    };
-    for (int side : { 1, -1 })
-    {
-      boundary.clear();
-      for (int k = 0; k < 3; ++k)
-      {
-        const int a = ct[k];
-        const int b = ct[(k + 1) % 3];
-        const int edge = binding.collisionEdgeIndex(a, b);
-        const int p = pathFor(edge, side);
-        const bool forward = topology.edges[edge][0] == a;
-        const auto& pv = binding.paths[p].visualVertices;
-        for (std::size_t i = 0; i < pv.size(); ++i)
-        {
-          const double fromA = forward ? pathFractions[p][i] : 1.0 - pathFractions[p][i];
-          const Vector2 position = (1.0 - fromA) * corners[k] + fromA * corners[(k + 1) % 3];
-          boundary.emplace_back(pv[i], position);
-        }
-      }
-      parameterisation.solve(
-        mesh, regionTriangles[2 * t + (side < 0 ? 1 : 0)], boundary, corners, binding.vertices);
-    }
-    if (t % 16 == 0)
-    {
-      report(progress,
-        0.85 + 0.15 * static_cast<double>(t) / collision.triangles.size(),
-        "assigning local parameters");
-    }
-  }
+  parameteriseRegions(
+    binding, collision, topology, pathFor, regionTriangles, pathFractions, progress);
   report(progress, 1.0, "done");
   return binding;
 }
