@@ -1,0 +1,245 @@
+#include "WrinkleInfluence.h"
+
+#include "ThinTissueError.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace thintissue
+{
+
+namespace
+{
+
+/// What decides whether and how much one monitor point moves a surface
+/// point (see the header).
+struct MonitorReach
+{
+  Vector3 origin;
+  Vector3 direction; ///< unit, toward the region point
+  double length = 0.0;
+  double sphereRadius = 0.0;
+  double sigma = 0.0;
+  double rho = 0.0;
+};
+
+double spacingOf(const MonitorPointSet& monitors, std::size_t i)
+{
+  const int curve = monitors.curveOf(i);
+  const int begin = monitors.curveStarts[curve];
+  const int end = monitors.curveStarts[curve + 1];
+  double sum = 0.0;
+  int count = 0;
+  const int k = static_cast<int>(i);
+  if (k > begin)
+  {
+    sum += (monitors.monitorPoints[k] - monitors.monitorPoints[k - 1]).norm();
+    ++count;
+  }
+  if (k + 1 < end)
+  {
+    sum += (monitors.monitorPoints[k + 1] - monitors.monitorPoints[k]).norm();
+    ++count;
+  }
+  return count > 0 ? sum / count : 0.0;
+}
+
+std::vector<MonitorReach> reachesOf(const MonitorPointSet& monitors,
+  const WrinkleInfluenceSettings& settings)
+{
+  std::vector<MonitorReach> reaches(monitors.size());
+  for (std::size_t i = 0; i < monitors.size(); ++i)
+  {
+    MonitorReach& r = reaches[i];
+    const Vector3 line = monitors.regionPoints[i] - monitors.monitorPoints[i];
+    r.origin = monitors.monitorPoints[i];
+    r.length = line.norm();
+    if (!(r.length > 0.0))
+    {
+      throw InvalidInputError(
+        "wrinkle influence: monitor point " + std::to_string(i) + " lies on its region point");
+    }
+    r.direction = line / r.length;
+    r.sphereRadius = settings.sphereRadius > 0.0 ? settings.sphereRadius : r.length;
+    r.sigma = settings.gaussianWidth > 0.0 ? settings.gaussianWidth : 0.5 * r.length;
+    const double spacing = spacingOf(monitors, i);
+    r.rho =
+      settings.blendWidth > 0.0 ? settings.blendWidth : (spacing > 0.0 ? spacing : 0.25 * r.length);
+  }
+  return reaches;
+}
+
+/// Uniform grid of surface points (only those inside `box`), cells of size
+/// `cell`: CSR per cell.
+class PointGrid
+{
+public:
+  PointGrid(const std::vector<Vector3>& points, const BoundingBox& box, double cell)
+    : Origin(box.min())
+    , Cell(cell)
+  {
+    const Vector3 extent = box.sizes() / cell;
+    for (int a = 0; a < 3; ++a)
+    {
+      Dimensions[a] = std::clamp(static_cast<int>(std::ceil(extent[a])), 1, 256);
+    }
+    Start.assign(cellCount() + 1, 0);
+    for (const Vector3& p : points)
+    {
+      const int c = cellOf(p);
+      if (c >= 0)
+      {
+        ++Start[c + 1];
+      }
+    }
+    for (std::size_t c = 0; c < cellCount(); ++c)
+    {
+      Start[c + 1] += Start[c];
+    }
+    Entries.resize(Start.back());
+    std::vector<int> fill(Start.begin(), Start.end() - 1);
+    for (std::size_t j = 0; j < points.size(); ++j)
+    {
+      const int c = cellOf(points[j]);
+      if (c >= 0)
+      {
+        Entries[fill[c]++] = static_cast<int>(j);
+      }
+    }
+  }
+
+  /// Calls f(point) for every point in the cells that meet the ball.
+  template <typename F>
+  void forEachNear(const Vector3& centre, double radius, F&& f) const
+  {
+    std::array<int, 3> low{}, high{};
+    for (int a = 0; a < 3; ++a)
+    {
+      low[a] = std::max(0, static_cast<int>(std::floor((centre[a] - radius - Origin[a]) / Cell)));
+      high[a] = std::min(
+        Dimensions[a] - 1, static_cast<int>(std::floor((centre[a] + radius - Origin[a]) / Cell)));
+    }
+    for (int z = low[2]; z <= high[2]; ++z)
+      for (int y = low[1]; y <= high[1]; ++y)
+        for (int x = low[0]; x <= high[0]; ++x)
+        {
+          const int c = (z * Dimensions[1] + y) * Dimensions[0] + x;
+          for (int e = Start[c]; e < Start[c + 1]; ++e)
+          {
+            f(Entries[e]);
+          }
+        }
+  }
+
+private:
+  std::size_t cellCount() const
+  {
+    return static_cast<std::size_t>(Dimensions[0]) * Dimensions[1] * Dimensions[2];
+  }
+  int cellOf(const Vector3& p) const
+  {
+    std::array<int, 3> index{};
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = (p[a] - Origin[a]) / Cell;
+      if (!(x >= 0.0) || x > Dimensions[a])
+      {
+        return -1;
+      }
+      index[a] = std::min(Dimensions[a] - 1, static_cast<int>(x));
+    }
+    return (index[2] * Dimensions[1] + index[1]) * Dimensions[0] + index[0];
+  }
+
+  Vector3 Origin;
+  double Cell;
+  std::array<int, 3> Dimensions{ { 1, 1, 1 } };
+  std::vector<int> Start;
+  std::vector<int> Entries;
+};
+
+struct RawEntry
+{
+  int monitor;
+  int point;
+  double blend;
+  double attenuation;
+};
+
+} // namespace
+
+WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
+  const std::vector<Vector3>& surfaceRest,
+  const WrinkleInfluenceSettings& settings)
+{
+  const std::vector<MonitorReach> reaches = reachesOf(monitors, settings);
+  BoundingBox box;
+  double largest = 0.0;
+  for (const MonitorReach& r : reaches)
+  {
+    box.extend(r.origin);
+    largest = std::max(largest, std::min(r.sphereRadius, r.length));
+  }
+  box.min().array() -= largest;
+  box.max().array() += largest;
+  const PointGrid grid(surfaceRest, box, largest);
+
+  std::vector<RawEntry> raw;
+  std::vector<double> blendSum(surfaceRest.size(), 0.0);
+  for (std::size_t i = 0; i < reaches.size(); ++i)
+  {
+    const MonitorReach& r = reaches[i];
+    const double reach = std::min(r.sphereRadius, r.length);
+    grid.forEachNear(r.origin,
+      reach,
+      [&](int j)
+      {
+        const Vector3 v = surfaceRest[j] - r.origin;
+        const double along = v.dot(r.direction);
+        const double squared = v.squaredNorm();
+        if (std::abs(along) >= r.length || squared > r.sphereRadius * r.sphereRadius)
+        {
+          return;
+        }
+        const double across2 = std::max(0.0, squared - along * along);
+        const double blend = std::exp(-across2 / (2.0 * r.rho * r.rho));
+        if (blend < settings.negligibleBlend)
+        {
+          return;
+        }
+        raw.push_back(RawEntry{
+          static_cast<int>(i), j, blend, std::exp(-along * along / (2.0 * r.sigma * r.sigma)) });
+        blendSum[j] += blend;
+      });
+  }
+  // raw is already grouped by monitor, in increasing order.
+  Offsets.assign(monitors.size() + 1, 0);
+  Points.reserve(raw.size());
+  Factors.reserve(raw.size());
+  std::vector<char> seen(surfaceRest.size(), 0);
+  for (const RawEntry& e : raw)
+  {
+    ++Offsets[e.monitor + 1];
+    Points.push_back(e.point);
+    Factors.push_back(e.blend / blendSum[e.point] * e.attenuation);
+    if (!seen[e.point])
+    {
+      seen[e.point] = 1;
+      Affected.push_back(e.point);
+    }
+  }
+  for (std::size_t i = 0; i < monitors.size(); ++i)
+  {
+    Offsets[i + 1] += Offsets[i];
+  }
+  std::sort(Affected.begin(), Affected.end());
+}
+
+std::size_t WrinkleInfluence::memoryBytes() const
+{
+  return (Offsets.size() + Points.size() + Affected.size()) * sizeof(int) +
+         Factors.size() * sizeof(double);
+}
+
+} // namespace thintissue

@@ -1,0 +1,78 @@
+// The surface points each monitor point moves (thesis 4.3, fig. 4-9) and
+// how much (4.4.2, Gaussian attenuation).
+//
+// Surface point P^s is affected by monitor point P^m0 when its projection
+// P^p onto the region line L^r = P^r0 - P^m0 is nearer to P^m0 than the
+// region point (|P^p - P^m0| < |L^r|, on either side of P^m0, so that the
+// rim beyond an inset monitor point moves too) and it lies inside a sphere
+// around P^m0. A point may be affected by several monitor points.
+//
+// Weights: the monitor point's displacement reaches the surface point
+// attenuated by a Gaussian of the distance along the region line,
+// w = exp(-|P^p - P^m0|^2 / (2 sigma^2)), so that wrinkles fade into the
+// tissue; the monitor points that affect one surface point are blended by a
+// Gaussian of its distance across their region lines, b = exp(-h^2 /
+// (2 rho^2)), normalised over all of them (sum b = 1), so that the surface
+// follows the nearest monitor points and a wave along the border is not
+// averaged away. The surface point moves by u = sum_i (b_i / sum b) w_i d_i
+// over the monitor points i with displacement d_i: never more than the
+// largest d_i, nothing where no monitor point moves.
+#ifndef WrinkleInfluence_h
+#define WrinkleInfluence_h
+
+#include "MonitorCurves.h"
+#include "ThinTissueWrinklesModule.h"
+
+#include <vector>
+
+namespace thintissue
+{
+
+struct WrinkleInfluenceSettings
+{
+  /// Sphere filter radius around each monitor point; 0 (default): the length
+  /// of its region line.
+  double sphereRadius = 0.0;
+  /// Gaussian width sigma of the attenuation along the region line; 0
+  /// (default): half the region line's length.
+  double gaussianWidth = 0.0;
+  /// Gaussian width rho of the blend across region lines; 0 (default): the
+  /// monitor point's spacing on its curve.
+  double blendWidth = 0.0;
+  /// Entries whose blend weight falls below this (relative) are dropped.
+  double negligibleBlend = 1e-3;
+};
+
+/// Per monitor point (CSR), the surface points it affects and the factor
+/// (b / sum b) w by which its displacement moves each.
+class THINTISSUEWRINKLES_EXPORT WrinkleInfluence
+{
+public:
+  WrinkleInfluence() = default;
+  /// Finds the affected points of `surfaceRest` (the visual vertices at
+  /// rest). Cost: the surface points near each monitor point (a grid).
+  WrinkleInfluence(const MonitorPointSet& monitors,
+    const std::vector<Vector3>& surfaceRest,
+    const WrinkleInfluenceSettings& settings = {});
+
+  std::size_t monitorCount() const { return Offsets.size() - 1; }
+  int affectedBegin(std::size_t monitor) const { return Offsets[monitor]; }
+  int affectedEnd(std::size_t monitor) const { return Offsets[monitor + 1]; }
+  int point(int entry) const { return Points[entry]; }
+  double factor(int entry) const { return Factors[entry]; }
+  std::size_t entryCount() const { return Points.size(); }
+  /// Surface points affected by at least one monitor point.
+  const std::vector<int>& affectedPoints() const { return Affected; }
+  /// Bytes held (the runtime cost beside MonitorPointSet::storedBytes).
+  std::size_t memoryBytes() const;
+
+private:
+  std::vector<int> Offsets{ 0 };
+  std::vector<int> Points;
+  std::vector<double> Factors;
+  std::vector<int> Affected;
+};
+
+} // namespace thintissue
+
+#endif
