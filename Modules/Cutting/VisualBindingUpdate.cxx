@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 
 namespace thintissue
 {
@@ -57,22 +58,34 @@ void CuttableVisualMesh::rebindSplitRegions(CutContext& context)
 std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, CutContext& context)
 {
   const int side = region.side > 0 ? 1 : -1;
-  std::unordered_map<int, std::vector<int>> crossingsOf;
+  // (local vertex, crossing) for the inner vertices of each traced cut,
+  // grouped by vertex (a vertex a cut visits twice counts twice, as on two
+  // cuts).
+  auto& crossingsOf = Buffers.crossingsOf;
+  crossingsOf.clear();
   for (std::size_t c = 0; c < region.crossings.size(); ++c)
   {
     const auto& vertices = region.crossings[c].vertices;
     for (std::size_t i = 1; i + 1 < vertices.size(); ++i)
-      crossingsOf[vertices[i]].push_back(static_cast<int>(c));
+    {
+      const int local = context.local(vertices[i]);
+      if (local < 0)
+        throw Error("visual cut of '" + Mesh.name + "': visual vertex " +
+                    std::to_string(vertices[i]) + " of a traced cut lies outside its region");
+      crossingsOf.emplace_back(local, static_cast<int>(c));
+    }
   }
+  std::sort(crossingsOf.begin(), crossingsOf.end());
   std::vector<char> onCut(region.vertices.size(), 0); // per local vertex
-  for (const auto& [w, crossings] : crossingsOf)
+  for (std::size_t i = 0; i < crossingsOf.size();)
   {
-    const int local = context.local(w);
-    if (local < 0)
-      throw Error("visual cut of '" + Mesh.name + "': visual vertex " + std::to_string(w) +
-                  " of a traced cut lies outside its region");
-    const CrossingPath& first = region.crossings[crossings.front()];
-    if (crossings.size() == 1)
+    const int local = crossingsOf[i].first;
+    const int w = region.vertices[local];
+    std::size_t j = i;
+    while (j < crossingsOf.size() && crossingsOf[j].first == local)
+      ++j;
+    const CrossingPath& first = region.crossings[crossingsOf[i].second];
+    if (j - i == 1)
     {
       // Along the cut in the plane it was traced in: increasing along it.
       const Vector2 d = first.planar[1] - first.planar[0];
@@ -86,10 +99,11 @@ std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, Cu
       for (int end : first.ends)
       {
         bool shared = true;
-        for (int c : crossings)
-          shared = shared && std::find(region.crossings[c].ends.begin(),
-                               region.crossings[c].ends.end(),
-                               end) != region.crossings[c].ends.end();
+        for (std::size_t k = i; k < j; ++k)
+        {
+          const auto& ends = region.crossings[crossingsOf[k].second].ends;
+          shared = shared && std::find(ends.begin(), ends.end(), end) != ends.end();
+        }
         common = shared ? end : common;
       }
       if (common < 0)
@@ -105,6 +119,7 @@ std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, Cu
     }
     onCut[local] = 1;
     context.rebound.push_back(w);
+    i = j;
   }
   for (const CrossingPath& crossing : region.crossings)
   {
@@ -121,104 +136,183 @@ std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, Cu
   return onCut;
 }
 
+namespace
+{
+
+int findSet(std::vector<int>& parent, int x)
+{
+  while (parent[x] != x)
+  {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+void joinSets(std::vector<int>& parent, int x, int y)
+{
+  x = findSet(parent, x);
+  y = findSet(parent, y);
+  if (x != y)
+    parent[std::max(x, y)] = std::min(x, y);
+}
+
+} // namespace
+
 // The region's triangles fall into pieces separated by the traced cuts;
 // each piece goes to the collision piece most of its triangles lie in, and
 // its inner vertices are rebound there by formula 5-2. Deciding per piece,
 // not per triangle, keeps a vertex and all its triangles in one region
 // where the parameterisation folds.
+//
+// Pieces without a flood: an inner vertex off the traced cuts has all its
+// triangles in the region and none of its edges on a cut, so its triangles
+// are one piece (union-find over local vertices, and triangles without such
+// a corner); triangles meet otherwise only across edges between border or
+// cut vertices, which are few (along the region's border and the cuts) and
+// matched by sorting.
 void CuttableVisualMesh::assignPieces(RegionCut& region,
   const std::vector<char>& onCut,
   CutContext& context)
 {
-  const CollisionTriangleSplit& split = context.cut->splits[region.split];
-  std::vector<Eigen::Matrix3d> inverses;
-  for (const auto& corners : split.childCorners)
-  {
-    Eigen::Matrix3d m;
-    for (int k = 0; k < 3; ++k)
-      m.row(k) = corners[k].transpose();
-    inverses.push_back(m.inverse());
-  }
-  // The new triangles in local vertices, and around each local vertex
-  // (compressed rows): the region is active, everything is dense.
   const std::size_t count = region.vertices.size();
   const std::size_t triangleCount = region.newTriangles.size();
-  std::vector<Triangle> corners(triangleCount);
-  std::vector<int> offsets(count + 1, 0);
-  for (std::size_t i = 0; i < triangleCount; ++i)
-    for (int k = 0; k < 3; ++k)
-    {
-      corners[i][k] = context.local(Mesh.triangles[region.newTriangles[i]][k]);
-      ++offsets[corners[i][k] + 1];
-    }
-  for (std::size_t v = 0; v < count; ++v)
-    offsets[v + 1] += offsets[v];
-  std::vector<int> around(offsets.back());
-  {
-    std::vector<int> cursor(offsets.begin(), offsets.end() - 1);
-    for (std::size_t i = 0; i < triangleCount; ++i)
-      for (int v : corners[i])
-        around[cursor[v]++] = static_cast<int>(i);
-  }
-  // Edges along the traced cuts (local, lower first), sorted; an edge is
-  // looked up only when both its ends lie on a traced cut.
-  std::vector<std::pair<int, int>> cutEdges;
-  std::vector<char> onTrace(count, 0);
+  CutBuffers& buffers = Buffers;
+  // Local vertices on a traced cut or the region's border: their triangles
+  // are joined through edges only.
+  auto& special = buffers.special;
+  special.assign(count, 0);
+  for (std::size_t i = 0; i < count; ++i)
+    special[i] = Bindings[region.vertices[i]].kind != BindingKind::CollisionTriangle;
+  auto& cutEdges = buffers.cutEdges;
+  cutEdges.clear();
   for (const CrossingPath& crossing : region.crossings)
     for (std::size_t i = 0; i + 1 < crossing.vertices.size(); ++i)
     {
       const int a = context.local(crossing.vertices[i]);
       const int b = context.local(crossing.vertices[i + 1]);
       cutEdges.emplace_back(std::min(a, b), std::max(a, b));
-      onTrace[a] = onTrace[b] = 1;
+      special[a] = special[b] = 1;
     }
   std::sort(cutEdges.begin(), cutEdges.end());
-  auto isCutEdge = [&cutEdges, &onTrace](int a, int b)
+  // Sets: local vertices, then triangles (count + i).
+  auto& parent = buffers.parent;
+  parent.resize(count + triangleCount);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto& corners = buffers.corners;
+  corners.resize(triangleCount);
+  auto& borderEdges = buffers.borderEdges; // (a, b, triangle), a < b
+  borderEdges.clear();
+  auto& representative = buffers.representative; // per triangle: its set
+  representative.resize(triangleCount);
+  for (std::size_t i = 0; i < triangleCount; ++i)
   {
-    return onTrace[a] && onTrace[b] &&
-           std::binary_search(
-             cutEdges.begin(), cutEdges.end(), std::make_pair(std::min(a, b), std::max(a, b)));
-  };
-  std::vector<int> piece(triangleCount, -1);
-  std::vector<int> members;
-  for (std::size_t seed = 0; seed < triangleCount; ++seed)
-  {
-    if (piece[seed] >= 0)
-      continue;
-    members.assign(1, static_cast<int>(seed));
-    piece[seed] = static_cast<int>(seed);
-    Vector2 centroid = Vector2::Zero();
-    for (std::size_t m = 0; m < members.size(); ++m)
-    {
-      const Triangle& tri = corners[members[m]];
-      for (int v : tri)
-        centroid += region.planar[v] / 3.0;
-      for (int k = 0; k < 3; ++k)
+    Triangle& tri = corners[i];
+    for (int k = 0; k < 3; ++k)
+      tri[k] = context.local(Mesh.triangles[region.newTriangles[i]][k]);
+    // A triangle is in the set of its first inner corner (joined with the
+    // others), else in its own.
+    int self = -1;
+    for (int v : tri)
+      if (!special[v])
       {
-        const int a = tri[k], b = tri[(k + 1) % 3];
-        if (isCutEdge(a, b))
-          continue;
-        for (int j = offsets[a]; j < offsets[a + 1]; ++j)
-        {
-          const int other = around[j];
-          const Triangle& o = corners[other];
-          if (piece[other] < 0 && (o[0] == b || o[1] == b || o[2] == b))
-          {
-            piece[other] = static_cast<int>(seed);
-            members.push_back(other);
-          }
-        }
+        if (self < 0)
+          self = v;
+        else
+          joinSets(parent, self, v);
       }
+    if (self < 0)
+      self = static_cast<int>(count + i);
+    representative[i] = self;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      if (special[a] && special[b] &&
+          !std::binary_search(
+            cutEdges.begin(), cutEdges.end(), std::make_pair(std::min(a, b), std::max(a, b))))
+        borderEdges.push_back({ { std::min(a, b), std::max(a, b), self } });
     }
-    const int c = pieceContaining(region.pieces, centroid / static_cast<double>(members.size()));
-    rebindPiece(region, members, corners, onCut, split.children[c], inverses[c], context);
+  }
+  std::sort(borderEdges.begin(), borderEdges.end());
+  for (std::size_t e = 0; e + 1 < borderEdges.size(); ++e)
+    if (borderEdges[e][0] == borderEdges[e + 1][0] && borderEdges[e][1] == borderEdges[e + 1][1])
+      joinSets(parent, borderEdges[e][2], borderEdges[e + 1][2]);
+  rebindPieces(region, onCut, context);
+}
+
+// The pieces assignPieces found (Buffers.parent), in the order of their
+// first triangles, each with its triangles in order: the centroid decides
+// the collision piece, rebindPiece the rest.
+void CuttableVisualMesh::rebindPieces(RegionCut& region,
+  const std::vector<char>& onCut,
+  CutContext& context)
+{
+  const CollisionTriangleSplit& split = context.cut->splits[region.split];
+  const std::size_t count = region.vertices.size();
+  const std::size_t triangleCount = region.newTriangles.size();
+  CutBuffers& buffers = Buffers;
+  auto& pieceOf = buffers.pieceOf; // per set root: its piece
+  pieceOf.assign(count + triangleCount, -1);
+  auto& pieceStart = buffers.pieceStart;
+  auto& centroids = buffers.centroids;
+  pieceStart.assign(1, 0);
+  centroids.clear();
+  auto& triangleIn = buffers.triangleIn;
+  triangleIn.resize(triangleCount);
+  for (std::size_t i = 0; i < triangleCount; ++i)
+  {
+    int& piece = pieceOf[findSet(buffers.parent, buffers.representative[i])];
+    if (piece < 0)
+    {
+      piece = static_cast<int>(centroids.size());
+      centroids.push_back(Vector2::Zero());
+      pieceStart.push_back(0);
+    }
+    triangleIn[i] = piece;
+    ++pieceStart[piece + 1];
+    for (int v : buffers.corners[i])
+      centroids[piece] += region.planar[v] / 3.0;
+  }
+  const std::size_t pieces = centroids.size();
+  for (std::size_t p = 0; p < pieces; ++p)
+    pieceStart[p + 1] += pieceStart[p];
+  auto& members = buffers.members;
+  members.resize(triangleCount);
+  {
+    auto& cursor = buffers.pieceOf; // reused: its roots are read no more
+    cursor.assign(pieceStart.begin(), pieceStart.end() - 1);
+    for (std::size_t i = 0; i < triangleCount; ++i)
+      members[cursor[triangleIn[i]]++] = static_cast<int>(i);
+  }
+  std::vector<Eigen::Matrix3d> inverses;
+  inverses.reserve(split.childCorners.size());
+  for (const auto& childCorners : split.childCorners)
+  {
+    Eigen::Matrix3d m;
+    for (int k = 0; k < 3; ++k)
+      m.row(k) = childCorners[k].transpose();
+    inverses.push_back(m.inverse());
+  }
+  for (std::size_t p = 0; p < pieces; ++p)
+  {
+    const int size = pieceStart[p + 1] - pieceStart[p];
+    const int c = pieceContaining(region.pieces, centroids[p] / static_cast<double>(size));
+    rebindPiece(region,
+      members.data() + pieceStart[p],
+      size,
+      buffers.corners,
+      onCut,
+      split.children[c],
+      inverses[c],
+      context);
   }
 }
 
 // A piece of a split region goes to collision triangle `child`; its inner
 // vertices are rebound there by formula 5-2, (a', b', c') = (a, b, c) M^-1.
 void CuttableVisualMesh::rebindPiece(const RegionCut& region,
-  const std::vector<int>& members,
+  const int* members,
+  int memberCount,
   const std::vector<Triangle>& corners,
   const std::vector<char>& onCut,
   int child,
@@ -234,8 +328,9 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
   std::vector<int>& childRegion = Regions[child][region.side];
   if (childRegion.empty())
     childRegion.reserve(region.newTriangles.size());
-  for (int m : members)
+  for (int j = 0; j < memberCount; ++j)
   {
+    const int m = members[j];
     const int t = region.newTriangles[m];
     TriangleRegion[t] = child;
     TriangleSide[t] = static_cast<std::int8_t>(side);
@@ -369,7 +464,7 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
           const VisualVertexBinding& b = Bindings[v];
           if (b.kind == BindingKind::CollisionVertex)
           {
-            if (std::find(tri.begin(), tri.end(), b.element) != tri.end())
+            if (tri[0] == b.element || tri[1] == b.element || tri[2] == b.element)
               continue;
             for (int x : tri)
               if (context.root(x) == b.element)
@@ -378,8 +473,8 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
           else if (b.kind == BindingKind::CollisionEdge)
           {
             const auto& e = Edges[b.element];
-            const bool has0 = std::find(tri.begin(), tri.end(), e[0]) != tri.end();
-            const bool has1 = std::find(tri.begin(), tri.end(), e[1]) != tri.end();
+            const bool has0 = tri[0] == e[0] || tri[1] == e[0] || tri[2] == e[0];
+            const bool has1 = tri[0] == e[1] || tri[1] == e[1] || tri[2] == e[1];
             if (has0 && has1)
               continue;
             for (int j = 0; j < 3; ++j)
@@ -532,7 +627,7 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   for (const NewCollisionVertex& made : cut.newVertices)
   {
     if (made.duplicateOf >= 0)
-      context.originalOf.emplace(made.vertex, made.duplicateOf);
+      context.addCopy(made.vertex, made.duplicateOf);
   }
   Regions.resize(collision.triangleCount());
   // The local-index scratch is lent to the cut and comes back all -1 (on an

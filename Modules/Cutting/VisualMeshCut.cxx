@@ -32,23 +32,35 @@ struct LocalMesh
   std::vector<int> globalVertex;
   std::vector<int> globalTexture;
   std::vector<int> globalTriangle;
-  std::unordered_map<int, int> localVertex;
 };
 
-LocalMesh extractTriangles(const TriangleMesh& mesh, const std::vector<int>& triangles)
+/// `localVertex` (per vertex of `mesh`) and `localTexture` (per texture
+/// coordinate) come all -1 and are grown as needed; `localVertex` returns
+/// with the local index of each vertex of `local.globalVertex` (the caller
+/// resets those), `localTexture` all -1 again.
+void extractTriangles(const TriangleMesh& mesh,
+  const std::vector<int>& triangles,
+  std::vector<int>& localVertex,
+  std::vector<int>& localTexture,
+  LocalMesh& local)
 {
-  LocalMesh local;
   local.mesh.name = mesh.name;
-  std::unordered_map<int, int> localTexture;
   const std::vector<std::string> names = mesh.pointAttributes.names();
   std::vector<std::vector<double>> attributes(names.size());
   // Room for a patch's vertices (about half its triangles, plus its rim).
   const std::size_t vertices = triangles.size() + 16;
-  local.localVertex.reserve(vertices);
+  if (localVertex.size() < mesh.vertexCount())
+    localVertex.resize(mesh.vertexCount() + mesh.vertexCount() / 4, -1);
+  if (localTexture.size() < mesh.textureCoordinates.size())
+    localTexture.resize(mesh.textureCoordinates.size() + mesh.textureCoordinates.size() / 4, -1);
   local.globalVertex.reserve(vertices);
   local.mesh.positions.reserve(vertices);
+  if (mesh.hasNormals())
+    local.mesh.normals.reserve(vertices);
   local.mesh.triangles.reserve(triangles.size());
   local.globalTriangle.reserve(triangles.size());
+  for (std::size_t a = 0; a < names.size(); ++a)
+    attributes[a].reserve(vertices * mesh.pointAttributes.get(names[a]).components);
   for (int t : triangles)
   {
     Triangle corners{};
@@ -56,10 +68,9 @@ LocalMesh extractTriangles(const TriangleMesh& mesh, const std::vector<int>& tri
     for (int k = 0; k < 3; ++k)
     {
       const int v = mesh.triangles[t][k];
-      const auto [it, added] =
-        local.localVertex.emplace(v, static_cast<int>(local.globalVertex.size()));
-      if (added)
+      if (localVertex[v] < 0)
       {
+        localVertex[v] = static_cast<int>(local.globalVertex.size());
         local.globalVertex.push_back(v);
         local.mesh.positions.push_back(mesh.positions[v]);
         if (mesh.hasNormals())
@@ -71,18 +82,17 @@ LocalMesh extractTriangles(const TriangleMesh& mesh, const std::vector<int>& tri
             attributes[a].end(), array.element(v), array.element(v) + array.components);
         }
       }
-      corners[k] = it->second;
+      corners[k] = localVertex[v];
       if (mesh.hasTextureCoordinates())
       {
         const int c = mesh.textureCorners[t][k];
-        const auto [tex, newTexture] =
-          localTexture.emplace(c, static_cast<int>(local.globalTexture.size()));
-        if (newTexture)
+        if (localTexture[c] < 0)
         {
+          localTexture[c] = static_cast<int>(local.globalTexture.size());
           local.globalTexture.push_back(c);
           local.mesh.textureCoordinates.push_back(mesh.textureCoordinates[c]);
         }
-        textures[k] = tex->second;
+        textures[k] = localTexture[c];
       }
     }
     local.mesh.triangles.push_back(corners);
@@ -90,12 +100,13 @@ LocalMesh extractTriangles(const TriangleMesh& mesh, const std::vector<int>& tri
       local.mesh.textureCorners.push_back(textures);
     local.globalTriangle.push_back(t);
   }
+  for (int c : local.globalTexture)
+    localTexture[c] = -1;
   for (std::size_t a = 0; a < names.size(); ++a)
   {
     local.mesh.pointAttributes.set(
       names[a], mesh.pointAttributes.get(names[a]).components, std::move(attributes[a]));
   }
-  return local;
 }
 
 Vector2 planarPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
@@ -266,32 +277,31 @@ std::vector<Vector2> regionPlane(const std::vector<Vector3>& parameters,
            : tutteEmbedding(parameters, triangles, isInner, frame);
 }
 
-/// A point where a traced cut crosses its region, at parameter s along it.
-struct CutNode
-{
-  double s;
-  SurfacePoint point;
-};
-
 /// The traced path: a walk from node 0 (the cut's start) to node 1 (its
-/// end) through the links the crossed triangles make. A fold in the
-/// region's parameterisation (rare) makes the order along the line differ
-/// from the order through the mesh, and the mesh order is the one that
-/// makes a path. False if the walk loses its way.
-bool walkCut(const std::vector<CutNode>& nodes,
-  std::unordered_map<int, std::vector<int>>& links,
+/// end) through the links the crossed triangles make (per node, the nodes
+/// linked to it: targets[offsets[n]] to targets[offsets[n + 1] - 1], in the
+/// order made). A fold in the region's parameterisation (rare) makes the
+/// order along the line differ from the order through the mesh, and the
+/// mesh order is the one that makes a path. False if the walk loses its
+/// way.
+template <typename Node>
+bool walkCut(const std::vector<Node>& nodes,
+  const std::vector<int>& offsets,
+  const std::vector<int>& targets,
+  std::vector<char>& visited,
   SurfacePath& traced)
 {
   traced.points.clear();
-  std::vector<char> visited(nodes.size(), 0);
+  visited.assign(nodes.size(), 0);
   int current = 0;
   visited[0] = 1;
   traced.points.push_back(nodes[0].point);
   while (current != 1)
   {
     int next = -1;
-    for (int candidate : links[current])
+    for (int j = offsets[current]; j < offsets[current + 1]; ++j)
     {
+      const int candidate = targets[j];
       if (visited[candidate] || next == 1)
         continue;
       if (next < 0 || candidate == 1 || nodes[candidate].s < nodes[next].s)
@@ -304,6 +314,26 @@ bool walkCut(const std::vector<CutNode>& nodes,
     current = next;
   }
   return true;
+}
+
+/// Links (from, to) grouped by their first node, in the order made
+/// (compressed rows: offsets per node, then targets).
+void groupLinks(const std::vector<std::pair<int, int>>& links,
+  std::size_t nodeCount,
+  std::vector<int>& offsets,
+  std::vector<int>& targets)
+{
+  offsets.assign(nodeCount + 1, 0);
+  for (const auto& link : links)
+    ++offsets[link.first + 1];
+  for (std::size_t n = 0; n < nodeCount; ++n)
+    offsets[n + 1] += offsets[n];
+  targets.resize(links.size());
+  for (const auto& link : links)
+    targets[offsets[link.first]++] = link.second;
+  for (std::size_t n = nodeCount; n > 0; --n)
+    offsets[n] = offsets[n - 1];
+  offsets[0] = 0;
 }
 
 int cornerIndex(const Vector3& barycentric)
@@ -403,10 +433,14 @@ void CuttableVisualMesh::reserveRoom()
 
 int CuttableVisualMesh::edgeIndex(int a, int b)
 {
-  const auto [it, added] = EdgeIndex.emplace(edgeKey(a, b), static_cast<int>(Edges.size()));
-  if (added)
-    Edges.push_back({ { std::min(a, b), std::max(a, b) } });
-  return it->second;
+  // Looked up first: emplace makes a node even for a key it has.
+  const std::uint64_t key = edgeKey(a, b);
+  const auto found = EdgeIndex.find(key);
+  if (found != EdgeIndex.end())
+    return found->second;
+  EdgeIndex.emplace(key, static_cast<int>(Edges.size()));
+  Edges.push_back({ { std::min(a, b), std::max(a, b) } });
+  return static_cast<int>(Edges.size()) - 1;
 }
 
 int CuttableVisualMesh::addVertexCopy(int source)
@@ -734,9 +768,12 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
       region.split = static_cast<int>(s);
       region.side = side;
       region.triangles = Regions[split.parent][side];
-      // Local vertices (CutContext::localIndex), the triangles in them.
+      // Local vertices (CutContext::localIndex), the triangles in them; a
+      // region has fewer vertices than triangles (plus its border).
       std::vector<Triangle> triangles;
       triangles.reserve(region.triangles.size());
+      region.vertices.reserve(region.triangles.size() + 64);
+      region.parameters.reserve(region.triangles.size() + 64);
       for (int t : region.triangles)
       {
         Triangle local;
@@ -805,10 +842,10 @@ SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
 void CuttableVisualMesh::traceCut(const RegionCut& region,
   double scale,
   CrossingPath& crossing,
-  const CutContext& context) const
+  const CutContext& context)
 {
   // The region is active (CutContext::localIndex): its vertices' planar
-  // points and signed distances are dense arrays.
+  // points, signed distances and nodes are dense arrays (Buffers, reused).
   auto localOf = [&](int v)
   {
     const int i = context.local(v);
@@ -835,33 +872,64 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
   const double tolerance = OnLineTolerance * scale;
   // Crossing points: nodes 0 and 1 are the cut's ends, then vertices within
   // a round-off of the line and points inside edges whose ends lie apart.
-  std::vector<CutNode> nodes{ { 0.0, start }, { 1.0, end } };
+  CutBuffers& buffers = Buffers;
+  buffers.nodes.clear();
+  buffers.nodes.push_back({ 0.0, start });
+  buffers.nodes.push_back({ 1.0, end });
   const std::size_t count = region.vertices.size();
-  std::vector<double> signedDistance(count);
-  std::vector<int> vertexNode(count, -1); // per local vertex
-  std::unordered_map<std::uint64_t, int> edgeNode;
+  buffers.signedDistance.resize(count);
+  buffers.vertexNode.assign(count, -1);
+  buffers.edgeHead.assign(count, -1);
+  buffers.edgeEntries.clear();
   for (int n = 0; n < 2; ++n)
   {
-    const SurfacePoint& p = nodes[n].point;
+    const SurfacePoint& p = buffers.nodes[n].point;
     if (p.isVertex())
-      vertexNode[localOf(p.vertex)] = n;
+      buffers.vertexNode[localOf(p.vertex)] = n;
     else
-      edgeNode[edgeKey(p.edgeStart, p.edgeEnd)] = n;
+      buffers.addEdgeNode(localOf(p.edgeStart), localOf(p.edgeEnd), n);
   }
   for (std::size_t i = 0; i < count; ++i)
   {
     const Vector2 x = region.planar[i] - from;
     const double d = cross2(along, x) / length;
-    signedDistance[i] = d;
+    buffers.signedDistance[i] = d;
+    if (std::abs(d) >= tolerance)
+      continue;
     const double s = x.dot(along) / (length * length);
     // Only inner vertices: the cut meets the region's border at its ends.
-    if (Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle &&
-        std::abs(d) < tolerance && s > CutEndMargin && s < 1.0 - CutEndMargin && vertexNode[i] < 0)
+    if (Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle && s > CutEndMargin &&
+        s < 1.0 - CutEndMargin && buffers.vertexNode[i] < 0)
     {
-      vertexNode[i] = static_cast<int>(nodes.size());
-      nodes.push_back({ s, SurfacePoint::atVertex(region.vertices[i]) });
+      buffers.vertexNode[i] = static_cast<int>(buffers.nodes.size());
+      buffers.nodes.push_back({ s, SurfacePoint::atVertex(region.vertices[i]) });
     }
   }
+  linkCrossedTriangles(region, tolerance, from, along, context);
+  groupLinks(buffers.links, buffers.nodes.size(), buffers.linkOffsets, buffers.linkTargets);
+  if (!walkCut(
+        buffers.nodes, buffers.linkOffsets, buffers.linkTargets, buffers.visited, crossing.path))
+  {
+    throw Error("visual cut of '" + Mesh.name + "': the cut from collision vertex " +
+                std::to_string(crossing.ends[0]) + " to " + std::to_string(crossing.ends[1]) +
+                " loses its way in the visual region on side " + std::to_string(region.side));
+  }
+}
+
+// Per region triangle, the crossing points on its border; a triangle with
+// two joins them (the cut passes through it): Buffers.links. Points inside
+// edges are made here, once per edge.
+void CuttableVisualMesh::linkCrossedTriangles(const RegionCut& region,
+  double tolerance,
+  const Vector2& from,
+  const Vector2& along,
+  const CutContext& context)
+{
+  CutBuffers& buffers = Buffers;
+  const auto& nodes = buffers.nodes;
+  const auto& signedDistance = buffers.signedDistance;
+  const auto& vertexNode = buffers.vertexNode;
+  const double squaredLength = along.squaredNorm();
   // The cut's ends lie on the line whatever round-off says (local indices).
   auto onLine = [&](int i)
   {
@@ -869,35 +937,30 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
            (Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle &&
              std::abs(signedDistance[i]) < tolerance);
   };
-  const bool endsAtVertices = nodes[0].point.isVertex() || nodes[1].point.isVertex();
-  // Per region triangle, the crossing points on its border; a triangle
-  // with two joins them (the cut passes through it).
-  std::unordered_map<int, std::vector<int>> links;
-  std::vector<int> here;
+  buffers.links.clear();
+  auto& here = buffers.here;
   for (int t : region.triangles)
   {
     const Triangle& tri = Mesh.triangles[t];
-    const int l0 = context.local(tri[0]), l1 = context.local(tri[1]), l2 = context.local(tri[2]);
+    const int locals[3] = { context.local(tri[0]), context.local(tri[1]), context.local(tri[2]) };
     // Most triangles lie wholly on one side of the line: nothing to do.
-    const double d0 = signedDistance[l0], d1 = signedDistance[l1], d2 = signedDistance[l2];
+    const double d0 = signedDistance[locals[0]], d1 = signedDistance[locals[1]],
+                 d2 = signedDistance[locals[2]];
     if (((d0 > tolerance && d1 > tolerance && d2 > tolerance) ||
           (d0 < -tolerance && d1 < -tolerance && d2 < -tolerance)) &&
-        vertexNode[l0] < 0 && vertexNode[l1] < 0 && vertexNode[l2] < 0 &&
-        (endsAtVertices ||
-          (!edgeNode.count(edgeKey(tri[0], tri[1])) && !edgeNode.count(edgeKey(tri[1], tri[2])) &&
-            !edgeNode.count(edgeKey(tri[2], tri[0])))))
+        vertexNode[locals[0]] < 0 && vertexNode[locals[1]] < 0 && vertexNode[locals[2]] < 0 &&
+        buffers.edgeNode(locals[0], locals[1]) < 0 && buffers.edgeNode(locals[1], locals[2]) < 0 &&
+        buffers.edgeNode(locals[2], locals[0]) < 0)
       continue;
     here.clear();
-    const int locals[3] = { l0, l1, l2 };
     for (int k = 0; k < 3; ++k)
     {
       const int a = tri[k], b = tri[(k + 1) % 3];
       const int la = locals[k], lb = locals[(k + 1) % 3];
       if (vertexNode[la] >= 0 && (vertexNode[la] < 2 || onLine(la)))
         here.push_back(vertexNode[la]);
-      const std::uint64_t key = edgeKey(a, b);
-      auto found = edgeNode.find(key);
-      if (found == edgeNode.end() && !onLine(la) && !onLine(lb) &&
+      int found = buffers.edgeNode(la, lb);
+      if (found < 0 && !onLine(la) && !onLine(lb) &&
           (signedDistance[la] > 0) != (signedDistance[lb] > 0))
       {
         // Never onto a vertex of the region's border (it keeps its own
@@ -910,15 +973,16 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
         const Vector2 x = (1.0 - lambda) * region.planar[la] + lambda * region.planar[lb] - from;
         // Near an end the parameterisation may put a crossing a little
         // beyond it: kept (only the walk decides what the path visits).
-        const double s = x.dot(along) / (length * length);
+        const double s = x.dot(along) / squaredLength;
         if (s > -0.5 && s < 1.5)
         {
-          found = edgeNode.emplace(key, static_cast<int>(nodes.size())).first;
-          nodes.push_back({ s, SurfacePoint::onEdge(a, b, lambda) });
+          found = static_cast<int>(nodes.size());
+          buffers.addEdgeNode(la, lb, found);
+          buffers.nodes.push_back({ s, SurfacePoint::onEdge(a, b, lambda) });
         }
       }
-      if (found != edgeNode.end())
-        here.push_back(found->second);
+      if (found >= 0)
+        here.push_back(found);
     }
     std::sort(here.begin(), here.end());
     here.erase(std::unique(here.begin(), here.end()), here.end());
@@ -927,14 +991,8 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
     // Two points (more only at round-off): the first and last along the cut.
     const auto [first, last] = std::minmax_element(
       here.begin(), here.end(), [&](int x, int y) { return nodes[x].s < nodes[y].s; });
-    links[*first].push_back(*last);
-    links[*last].push_back(*first);
-  }
-  if (!walkCut(nodes, links, crossing.path))
-  {
-    throw Error("visual cut of '" + Mesh.name + "': the cut from collision vertex " +
-                std::to_string(crossing.ends[0]) + " to " + std::to_string(crossing.ends[1]) +
-                " loses its way in the visual region on side " + std::to_string(region.side));
+    buffers.links.emplace_back(*first, *last);
+    buffers.links.emplace_back(*last, *first);
   }
 }
 
@@ -1005,27 +1063,47 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
     selectTouchedTriangles(static_cast<int>(r), context, triangles, regionOfLocal);
   if (triangles.empty())
     return;
-  LocalMesh local = extractTriangles(Mesh, triangles);
-  auto toLocal = [&](SurfacePoint p)
-  {
-    if (p.isVertex())
-      return SurfacePoint::atVertex(local.localVertex.at(p.vertex));
-    const int a = local.localVertex.at(p.edgeStart), b = local.localVertex.at(p.edgeEnd);
-    return SurfacePoint::onEdge(p.edgeStart < p.edgeEnd ? a : b,
-      p.edgeStart < p.edgeEnd ? b : a,
-      p.edgeStart < p.edgeEnd ? p.edgeParameter : 1.0 - p.edgeParameter);
-  };
+  // The touched triangles as a mesh of their own, numbered through the
+  // (all -1: no region is active) local-index scratch, reset right after.
+  LocalMesh local;
   std::vector<SurfacePath> paths;
-  for (const RegionCut& region : context.regions)
+  try
   {
-    for (const CrossingPath& crossing : region.crossings)
+    extractTriangles(Mesh, triangles, context.localIndex, Buffers.localTexture, local);
+    auto localOf = [&](int v)
     {
-      SurfacePath p;
-      for (const SurfacePoint& point : crossing.path.points)
-        p.points.push_back(toLocal(point));
-      paths.push_back(std::move(p));
+      const int i = context.local(v);
+      if (i < 0)
+        throw Error("visual cut of '" + Mesh.name + "': traced cut through visual vertex " +
+                    std::to_string(v) + " outside the triangles it touches");
+      return i;
+    };
+    for (const RegionCut& region : context.regions)
+    {
+      for (const CrossingPath& crossing : region.crossings)
+      {
+        SurfacePath& p = paths.emplace_back();
+        p.points.reserve(crossing.path.points.size());
+        for (const SurfacePoint& point : crossing.path.points)
+        {
+          // onEdge orders the ends by their local indices.
+          if (point.isVertex())
+            p.points.push_back(SurfacePoint::atVertex(localOf(point.vertex)));
+          else
+            p.points.push_back(SurfacePoint::onEdge(
+              localOf(point.edgeStart), localOf(point.edgeEnd), point.edgeParameter));
+        }
+      }
     }
   }
+  catch (...)
+  {
+    for (int v : local.globalVertex)
+      context.localIndex[v] = -1;
+    throw;
+  }
+  for (int v : local.globalVertex)
+    context.localIndex[v] = -1;
   const RemeshedSurface remeshed = insertPaths(local.mesh, paths);
   const TriangleMesh& out = remeshed.mesh;
   const int localCount = static_cast<int>(local.globalVertex.size());
@@ -1064,9 +1142,16 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
     outputOf[regionOfLocal[remeshed.inputTriangle[j]]].push_back(static_cast<int>(j));
   for (RegionCut& region : context.regions)
     Regions[context.cut->splits[region.split].parent][region.side].clear();
+  // Room for every inserted vertex in each region (a reallocation copies
+  // the region's arrays).
+  const std::size_t inserted = out.vertexCount() - static_cast<std::size_t>(localCount);
   for (std::size_t r = 0; r < context.regions.size(); ++r)
   {
     RegionCut& region = context.regions[r];
+    const std::size_t room = region.vertices.size() + inserted;
+    region.vertices.reserve(room);
+    region.parameters.reserve(room);
+    region.planar.reserve(room);
     context.activate(region);
     for (int j : outputOf[r])
     {

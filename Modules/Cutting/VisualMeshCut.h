@@ -45,9 +45,11 @@
 #include "ThinTissueCuttingModule.h"
 #include "VisualCollisionBinding.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace thintissue
@@ -138,6 +140,68 @@ private:
     std::vector<int> triangles;
   };
   struct CutContext;
+  /// Buffers the stages of a cut work in, kept from cut to cut (cleared,
+  /// never freed): a cut allocates little. Indices are local to the region
+  /// being worked on (CutContext::localIndex).
+  struct CutBuffers
+  {
+    /// traceCut: a point where the cut crosses its region, at parameter s
+    /// along it; per local vertex its signed distance from the cut's line
+    /// and its node; the nodes inside edges as lists per lower local end
+    /// (head, then next / other end / node per entry); the joins the
+    /// crossed triangles make (from, to).
+    struct Node
+    {
+      double s;
+      SurfacePoint point;
+    };
+    std::vector<Node> nodes;
+    std::vector<double> signedDistance;
+    std::vector<int> vertexNode;
+    std::vector<int> edgeHead;
+    std::vector<std::array<int, 3>> edgeEntries;
+    /// The node inside local edge (a, b), or -1.
+    int edgeNode(int a, int b) const
+    {
+      for (int e = edgeHead[std::min(a, b)]; e >= 0; e = edgeEntries[e][0])
+        if (edgeEntries[e][1] == std::max(a, b))
+          return edgeEntries[e][2];
+      return -1;
+    }
+    void addEdgeNode(int a, int b, int node)
+    {
+      int& head = edgeHead[std::min(a, b)];
+      edgeEntries.push_back({ { head, std::max(a, b), node } });
+      head = static_cast<int>(edgeEntries.size()) - 1;
+    }
+    std::vector<std::pair<int, int>> links;
+    std::vector<int> linkOffsets;
+    std::vector<int> linkTargets;
+    std::vector<char> visited;
+    std::vector<int> here;
+    /// bindCrossingVertices: (local vertex, traced cut) on a cut's inside.
+    std::vector<std::pair<int, int>> crossingsOf;
+    /// assignPieces: per local vertex, whether it lies on a traced cut or
+    /// the region's border; the traced cuts' edges (local, lower first);
+    /// union-find over local vertices then triangles; per triangle its
+    /// local corners; edges between special vertices (a, b, set); the
+    /// pieces (per set root, then as a cursor), their starts in `members`
+    /// and centroid sums; per triangle its piece.
+    std::vector<char> special;
+    std::vector<std::pair<int, int>> cutEdges;
+    std::vector<int> parent;
+    std::vector<int> representative;
+    std::vector<Triangle> corners;
+    std::vector<std::array<int, 3>> borderEdges;
+    std::vector<int> pieceOf;
+    std::vector<int> pieceStart;
+    std::vector<Vector2> centroids;
+    std::vector<int> triangleIn;
+    std::vector<int> members;
+    /// remeshRegions: per texture coordinate, its local index (all -1
+    /// between uses).
+    std::vector<int> localTexture;
+  };
   struct RegionCut;
   struct EdgePoint;
   struct CrossingPath;
@@ -161,7 +225,12 @@ private:
   void traceCut(const RegionCut& region,
     double scale,
     CrossingPath& crossing,
-    const CutContext& context) const;
+    const CutContext& context);
+  void linkCrossedTriangles(const RegionCut& region,
+    double tolerance,
+    const Vector2& from,
+    const Vector2& along,
+    const CutContext& context);
 
   void splitEdgePaths(CutContext& context);
   void traceRegionCuts(CutContext& context);
@@ -173,8 +242,10 @@ private:
   void rebindSplitRegions(CutContext& context);
   std::vector<char> bindCrossingVertices(RegionCut& region, CutContext& context);
   void assignPieces(RegionCut& region, const std::vector<char>& onCut, CutContext& context);
+  void rebindPieces(RegionCut& region, const std::vector<char>& onCut, CutContext& context);
   void rebindPiece(const RegionCut& region,
-    const std::vector<int>& members,
+    const int* members,
+    int memberCount,
     const std::vector<Triangle>& corners,
     const std::vector<char>& onCut,
     int child,
@@ -208,6 +279,7 @@ private:
   int CutSurfaceTexture = -1;
   /// Per visual vertex, -1 between cuts (see CutContext::localIndex).
   std::vector<int> LocalIndexScratch;
+  CutBuffers Buffers;
 };
 
 } // namespace thintissue

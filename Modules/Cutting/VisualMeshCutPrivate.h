@@ -66,8 +66,11 @@ struct CuttableVisualMesh::CutContext
 {
   const CuttableCollisionMesh* collision = nullptr;
   const CollisionCutResult* cut = nullptr;
-  /// Collision vertex copies made by this cut -> the vertex copied.
-  std::unordered_map<int, int> originalOf;
+  /// Collision vertex copies made by this cut -> the vertex copied, from
+  /// collision vertex `firstCopy` on (-1: not a copy). The copies are the
+  /// last vertices made, so the array is as long as the cut is.
+  int firstCopy = 0;
+  std::vector<int> originalOf;
   std::vector<EdgePoint> edgePoints;
   std::unordered_map<int, int> edgePointOf; ///< collision vertex -> edgePoints
   std::vector<RegionCut> regions;
@@ -104,10 +107,26 @@ struct CuttableVisualMesh::CutContext
     region.planar.push_back(planar);
   }
 
+  void addCopy(int copy, int original)
+  {
+    if (originalOf.empty())
+      firstCopy = copy;
+    if (copy < firstCopy)
+    {
+      originalOf.insert(originalOf.begin(), static_cast<std::size_t>(firstCopy - copy), -1);
+      firstCopy = copy;
+    }
+    const auto i = static_cast<std::size_t>(copy - firstCopy);
+    if (i >= originalOf.size())
+      originalOf.resize(i + 1, -1);
+    if (originalOf[i] < 0)
+      originalOf[i] = original;
+  }
   int root(int v) const
   {
-    const auto it = originalOf.find(v);
-    return it == originalOf.end() ? v : it->second;
+    const int i = v - firstCopy;
+    return i >= 0 && i < static_cast<int>(originalOf.size()) && originalOf[i] >= 0 ? originalOf[i]
+                                                                                   : v;
   }
 
 private:
