@@ -161,35 +161,11 @@ int vtkEmbeddedSurfaceDeformationFilter::RequestData(vtkInformation*,
   }
   try
   {
-    const char* idName = vtkHexahedralEmbeddingFilter::GetHexahedronIdArrayName();
-    const char* localName = vtkHexahedralEmbeddingFilter::GetTrilinearCoordinatesArrayName();
-    vtkDataArray* ids = input->GetPointData()->GetArray(idName);
-    vtkDataArray* locals = input->GetPointData()->GetArray(localName);
-    const vtkIdType count = input->GetNumberOfPoints();
-    if (ids == nullptr || locals == nullptr || ids->GetNumberOfComponents() != 1 ||
-        locals->GetNumberOfComponents() != 3 || ids->GetNumberOfTuples() != count ||
-        locals->GetNumberOfTuples() != count)
-    {
-      throw thintissue::InvalidInputError(
-        std::string("embedded polydata (input 0): needs point "
-                    "arrays '") +
-        idName + "' (1 component) and '" + localName +
-        "' (3 components), one tuple per point; run vtkHexahedralEmbeddingFilter first");
-    }
     const thintissue::HexahedralMesh mesh =
       thintissue::fromUnstructuredGrid(grid, "deformed grid, input 1");
-    std::vector<int> hexahedra(static_cast<std::size_t>(count));
-    std::vector<Vector3> coordinates(static_cast<std::size_t>(count));
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      const double id = ids->GetComponent(i, 0);
-      // Out-of-range values are caught by assign(); keep them out of range.
-      hexahedra[static_cast<std::size_t>(i)] =
-        std::isfinite(id) && id >= 0.0 && id < 2147483647.0 ? static_cast<int>(id) : -1;
-      locals->GetTuple(i, coordinates[static_cast<std::size_t>(i)].data());
-    }
-    thintissue::HexahedralEmbedding embedding;
-    embedding.assign(mesh, std::move(hexahedra), std::move(coordinates));
+    const thintissue::HexahedralEmbedding embedding =
+      thintissue::embeddingFromPolyData(input, mesh, "embedded polydata (input 0)");
+    const vtkIdType count = input->GetNumberOfPoints();
     this->UpdateProgress(0.3);
 
     vtkNew<vtkDoubleArray> moved;

@@ -1,11 +1,13 @@
 #include "vtkThinTissueConversion.h"
 
 #include "ThinTissueError.h"
+#include "vtkHexahedralEmbeddingFilter.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
+#include <vtkDataArray.h>
 #include <vtkDataSet.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdList.h>
@@ -16,6 +18,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <cmath>
 #include <cstring>
 #include <map>
 
@@ -349,6 +352,39 @@ HexahedralMesh fromUnstructuredGrid(vtkDataSet* grid, const std::string& name)
   readAttributeArrays(grid->GetPointData(), { FixedNodeArrayName }, mesh.nodeAttributes);
   mesh.checkConsistency();
   return mesh;
+}
+
+HexahedralEmbedding embeddingFromPolyData(vtkPolyData* polyData,
+  const HexahedralMesh& mesh,
+  const std::string& name)
+{
+  const char* idName = vtkHexahedralEmbeddingFilter::GetHexahedronIdArrayName();
+  const char* localName = vtkHexahedralEmbeddingFilter::GetTrilinearCoordinatesArrayName();
+  vtkDataArray* ids = polyData->GetPointData()->GetArray(idName);
+  vtkDataArray* locals = polyData->GetPointData()->GetArray(localName);
+  const vtkIdType count = polyData->GetNumberOfPoints();
+  if (ids == nullptr || locals == nullptr || ids->GetNumberOfComponents() != 1 ||
+      locals->GetNumberOfComponents() != 3 || ids->GetNumberOfTuples() != count ||
+      locals->GetNumberOfTuples() != count)
+  {
+    throw InvalidInputError(name + ": needs point arrays '" + idName + "' (1 component) and '" +
+                            localName +
+                            "' (3 components), one tuple per point; run "
+                            "vtkHexahedralEmbeddingFilter first");
+  }
+  std::vector<int> hexahedra(static_cast<std::size_t>(count));
+  std::vector<Vector3> coordinates(static_cast<std::size_t>(count));
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const double id = ids->GetComponent(i, 0);
+    // Out-of-range values are caught by assign(); keep them out of range.
+    hexahedra[static_cast<std::size_t>(i)] =
+      std::isfinite(id) && id >= 0.0 && id < 2147483647.0 ? static_cast<int>(id) : -1;
+    locals->GetTuple(i, coordinates[static_cast<std::size_t>(i)].data());
+  }
+  HexahedralEmbedding embedding;
+  embedding.assign(mesh, std::move(hexahedra), std::move(coordinates));
+  return embedding;
 }
 
 } // namespace thintissue

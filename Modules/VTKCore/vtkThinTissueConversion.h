@@ -9,6 +9,7 @@
 #ifndef vtkThinTissueConversion_h
 #define vtkThinTissueConversion_h
 
+#include "HexahedralEmbedding.h"
 #include "HexahedralMesh.h"
 #include "ThinTissueVTKCoreModule.h"
 #include "TriangleMesh.h"
@@ -42,6 +43,14 @@ THINTISSUEVTKCORE_EXPORT vtkSmartPointer<vtkUnstructuredGrid> toUnstructuredGrid
 /// Unstructured grid (or any data set) of hexahedra -> hexahedral mesh.
 /// Throws InvalidInputError naming `name` if a cell is not a hexahedron.
 THINTISSUEVTKCORE_EXPORT HexahedralMesh fromUnstructuredGrid(vtkDataSet* grid,
+  const std::string& name);
+
+/// The embedding a polydata carries (point arrays "HexahedronId" and
+/// "TrilinearCoordinates" of vtkHexahedralEmbeddingFilter) in `mesh`.
+/// Throws InvalidInputError naming `name` when the arrays are missing or
+/// malformed or refer to hexahedra `mesh` does not have.
+THINTISSUEVTKCORE_EXPORT HexahedralEmbedding embeddingFromPolyData(vtkPolyData* polyData,
+  const HexahedralMesh& mesh,
   const std::string& name);
 
 } // namespace thintissue

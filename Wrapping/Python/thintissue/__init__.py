@@ -10,3 +10,4 @@ from .ThinTissueVTKModels import *  # noqa: F401,F403
 from .ThinTissueVTKSolver import *  # noqa: F401,F403
 from .ThinTissueVTKBinding import *  # noqa: F401,F403
 from .ThinTissueVTKCutting import *  # noqa: F401,F403
+from .ThinTissueVTKWrinkles import *  # noqa: F401,F403
