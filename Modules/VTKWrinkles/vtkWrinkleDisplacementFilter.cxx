@@ -187,6 +187,8 @@ int vtkWrinkleDisplacementFilter::RequestData(vtkInformation*,
     p.reversalThreshold = this->ReversalThreshold;
     p.startContacts = this->StartContacts;
     p.endContacts = this->EndContacts;
+    p.anchor = this->Anchor == ANCHOR_REFERENCE ? thintissue::WrinkleAnchor::Reference
+                                                : thintissue::WrinkleAnchor::Current;
     state.generator->setParameters(p);
     thintissue::WrinkleContactState contacts;
     contacts.lowerSurfaceContacts = this->LowerSurfaceContacts;
@@ -295,6 +297,7 @@ void vtkWrinkleDisplacementFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "ReversalThreshold: " << this->ReversalThreshold << "\n"
      << indent << "StartContacts: " << this->StartContacts << "\n"
      << indent << "EndContacts: " << this->EndContacts << "\n"
+     << indent << "Anchor: " << (this->Anchor == ANCHOR_REFERENCE ? "Reference" : "Current") << "\n"
      << indent << "SphereRadius: " << this->SphereRadius << "\n"
      << indent << "GaussianWidth: " << this->GaussianWidth << "\n"
      << indent << "BlendWidth: " << this->BlendWidth << "\n"

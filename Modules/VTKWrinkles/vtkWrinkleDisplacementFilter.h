@@ -93,6 +93,19 @@ public:
   vtkGetMacro(EndContacts, int);
   ///@}
 
+  enum Anchors
+  {
+    ANCHOR_CURRENT = 0,
+    ANCHOR_REFERENCE = 1
+  };
+  ///@{
+  /// Where the wrinkle offset is added (thintissue::WrinkleAnchor): to the
+  /// current monitor points (ANCHOR_CURRENT, the default: continuous, never
+  /// more than m^up) or to the reference points as formula 4-16 writes it.
+  vtkSetClampMacro(Anchor, int, ANCHOR_CURRENT, ANCHOR_REFERENCE);
+  vtkGetMacro(Anchor, int);
+  ///@}
+
   ///@{
   /// Affected surface points (4.3): sphere radius, Gaussian width of the
   /// attenuation along the region lines, blend width across them; 0
@@ -143,6 +156,7 @@ protected:
   double ReversalThreshold;
   int StartContacts;
   int EndContacts;
+  int Anchor = ANCHOR_CURRENT;
   double SphereRadius = 0.0;
   double GaussianWidth = 0.0;
   double BlendWidth = 0.0;

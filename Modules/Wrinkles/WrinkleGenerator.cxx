@@ -239,7 +239,9 @@ void WrinkleGenerator::computeWrinklePoints()
     Wrinkle[k] = Direction[k] * delta * magnitude;
     const Vector3 motion = Current[i] - Reference[i];
     const double m = motion.norm();
-    WrinklePoints[k] = m > 0.0 ? Reference[i] + Wrinkle[k] / m * motion : Reference[i];
+    const Vector3 offset = m > 0.0 ? Vector3(Wrinkle[k] / m * motion) : Vector3::Zero();
+    WrinklePoints[k] =
+      (Parameters.anchor == WrinkleAnchor::Reference ? Reference[i] : Current[i]) + offset;
   }
 }
 

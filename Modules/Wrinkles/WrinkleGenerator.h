@@ -10,7 +10,9 @@
 //     P^w0; it is cleared when the lower-surface contacts fall below N_e and
 //     the instrument has left;
 //  3. while there is a reference, the wrinkle points of formula 4-16,
-//     P^wc_k = P^w0_k + W(k) (P^mc_k - P^w0_k) / |P^mc_k - P^w0_k|, with
+//     P^wc_k = P^w0_k + W(k) (P^mc_k - P^w0_k) / |P^mc_k - P^w0_k|
+//     (WrinkleAnchor::Reference; by default the offset is added to P^mc_k
+//     instead, see WrinkleAnchor), with
 //     W(k) = D(k) M(k), D(k) = sin(theta_k) over the reference's chord
 //     length (0 to theta^d), M(k) = delta(k) eta(s m^d), m^d the mean of the
 //     largest and smallest |P^mc_k - P^w0_k|, eta clamping to m^up, delta
@@ -35,6 +37,19 @@ namespace thintissue
 
 class CollisionScene;
 
+/// Where the wrinkle offset W(k) (P^mc - P^w0) / |P^mc - P^w0| is added.
+enum class WrinkleAnchor
+{
+  /// To the current monitor point: the surface keeps the coarse deformation
+  /// and gets a wave on top, continuous where the window ends (D = 0 there)
+  /// and never moved by more than m^up. The default.
+  Current,
+  /// To the reference point, as formula 4-16 writes it: the window's border
+  /// is drawn around the reference shape, so where the window ends the
+  /// surface steps by the motion since the reversal (|P^mc - P^w0|).
+  Reference
+};
+
 /// The parameters of 4.4 with the thesis's defaults where it gives them.
 struct WrinkleParameters
 {
@@ -55,6 +70,7 @@ struct WrinkleParameters
   /// N_e: fewer lower-surface contacts than this (and no instrument) end
   /// the wrinkles.
   int endContacts = 1;
+  WrinkleAnchor anchor = WrinkleAnchor::Current;
 };
 
 /// Throws InvalidInputError naming the parameter on a value out of range.

@@ -82,6 +82,9 @@ class WrinklesTest(unittest.TestCase):
         f.SetStartContacts(2)
         f.SetEndContacts(3)
         f.SetGaussianWidth(1.5)
+        f.SetAnchor(thintissue.vtkWrinkleDisplacementFilter.ANCHOR_REFERENCE)
+        self.assertEqual(f.GetAnchor(), 1)
+        self.assertIn("Anchor: Reference", str(f))
         self.assertAlmostEqual(f.GetFrequency(), 7 * math.pi)
         self.assertEqual((f.GetScale(), f.GetMagnitudeBound(), f.GetCutOffThickness()),
                          (2.0, 0.3, 0.2))

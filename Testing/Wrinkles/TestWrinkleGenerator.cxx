@@ -131,14 +131,33 @@ TEST(WrinkleGenerator, MagnitudeIsBoundedAndThinPointsBelowTheCutOffStayStill)
   for (std::size_t k = 0; k < g.wrinkleFunction().size(); ++k)
   {
     const int i = g.windowBegin() + static_cast<int>(k);
-    // |P^wc - P^w0| = |W(k)| <= m^up.
+    // |W(k)| <= m^up, the offset from the current monitor point.
     EXPECT_LE(std::abs(g.wrinkleFunction()[k]), p.magnitudeBound + 1e-12);
-    EXPECT_NEAR((g.wrinklePoints()[k] - g.referencePoints()[i]).norm(),
+    EXPECT_NEAR((g.wrinklePoints()[k] - g.currentMonitorPoints()[i]).norm(),
       std::abs(g.wrinkleFunction()[k]),
       1e-12);
     largest = std::max(largest, std::abs(g.wrinkleFunction()[k]));
   }
   EXPECT_GT(largest, 0.5 * p.magnitudeBound); // the bound is reached, not just respected
+  // No surface point moves by more than m^up.
+  for (const Vector3& d : g.displacements())
+  {
+    EXPECT_LE(d.norm(), p.magnitudeBound + 1e-12);
+  }
+  // Formula 4-16 as written: around the reference, |P^wc - P^w0| = |W(k)|.
+  WrinkleParameters literal = p;
+  literal.anchor = WrinkleAnchor::Reference;
+  WrinkleGenerator thesis = s.generator(literal);
+  s.run(thesis, 10, 4);
+  ASSERT_TRUE(thesis.wrinkling());
+  for (std::size_t k = 0; k < thesis.wrinkleFunction().size(); ++k)
+  {
+    const int i = thesis.windowBegin() + static_cast<int>(k);
+    EXPECT_NEAR((thesis.wrinklePoints()[k] - thesis.referencePoints()[i]).norm(),
+      std::abs(thesis.wrinkleFunction()[k]),
+      1e-12);
+    EXPECT_DOUBLE_EQ(thesis.wrinkleFunction()[k], g.wrinkleFunction()[k]);
+  }
   // r^c between the thinnest and thickest window points.
   double thin = 1e9, thick = 0.0;
   for (int i = g.windowBegin(); i < g.windowEnd(); ++i)
@@ -157,7 +176,7 @@ TEST(WrinkleGenerator, MagnitudeIsBoundedAndThinPointsBelowTheCutOffStayStill)
     if (s.c.monitors.thickness[i] < p.cutOffThickness)
     {
       EXPECT_EQ(cut.wrinkleFunction()[k], 0.0);
-      EXPECT_EQ(cut.wrinklePoints()[k], cut.referencePoints()[i]);
+      EXPECT_EQ(cut.wrinklePoints()[k], cut.currentMonitorPoints()[i]);
       ++still;
     }
     else
