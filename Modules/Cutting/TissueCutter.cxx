@@ -61,6 +61,7 @@ TissueCutter::TissueCutter(const VisualCollisionBinding& binding,
   // Cuts add visual vertices: room for as many as the visual mesh reserves.
   VisualEmbedding.reserve(Visual.mesh().positions.capacity());
   VisualSeen.reserve(Visual.mesh().positions.capacity());
+  VisualSeen.assign(Visual.mesh().vertexCount(), 0);
   VisualOfHexahedron.resize(Simulation.hexahedronCount());
   for (int v = 0; v < static_cast<int>(Visual.mesh().vertexCount()); ++v)
   {
