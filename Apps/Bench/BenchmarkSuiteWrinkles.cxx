@@ -50,7 +50,7 @@ std::vector<Vector3> dented(const HexahedralMesh& mesh, const Vector3& centre, d
 /// Seconds per step of update + applyTo, wrinkling, over `steps` steps.
 double wrinklingStep(const MeniscusModel& model, const MonitorPointSet& monitors, int steps)
 {
-  WrinkleGenerator generator(monitors, model.simulation, model.visual.positions);
+  WrinkleGenerator generator(monitors, model.simulation, model.visual);
   WrinkleContactState contacts;
   contacts.lowerSurfaceContacts = 5;
   contacts.instrumentTouches = true;
@@ -97,7 +97,7 @@ THINTISSUE_BENCHMARK_SUITE(wrinklesSuite,
     static_cast<double>(monitors.storedBytes()) / 1024.0,
     "KB",
     12.9);
-  const WrinkleInfluence influence(monitors, model.visual.positions);
+  const WrinkleInfluence influence(monitors, model.visual.positions, model.visual.triangles);
   reporter.report(name,
     "affected surface points (runtime)",
     static_cast<double>(influence.memoryBytes()) / 1024.0,

@@ -229,8 +229,9 @@ void vtkWrinkleDisplacementFilter::Build(vtkPolyData* surface,
   }
   const thintissue::HexahedralEmbedding embedding =
     thintissue::embeddingFromPolyData(surface, rest, "embedded surface (input 0)");
-  std::vector<Vector3> surfaceRest;
-  embedding.mapPositions(rest.nodes, surfaceRest);
+  // The surface's triangles keep the lips of a cut apart (WrinkleInfluence).
+  thintissue::TriangleMesh surfaceRest = thintissue::fromPolyData(surface, "surface (input 0)");
+  embedding.mapPositions(rest.nodes, surfaceRest.positions);
   thintissue::WrinkleInfluenceSettings influence;
   influence.sphereRadius = this->SphereRadius;
   influence.gaussianWidth = this->GaussianWidth;

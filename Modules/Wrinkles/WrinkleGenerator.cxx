@@ -67,10 +67,11 @@ WrinkleContactState wrinkleContactState(const CollisionScene& scene, int tissue)
 
 WrinkleGenerator::WrinkleGenerator(MonitorPointSet monitors,
   const HexahedralMesh& mesh,
-  const std::vector<Vector3>& surfaceRest,
+  const TriangleMesh& surfaceRest,
   const WrinkleParameters& parameters,
   const WrinkleInfluenceSettings& influence)
   : Monitors(std::move(monitors))
+  , InfluenceSettings(influence)
 {
   if (Monitors.size() == 0)
   {
@@ -79,7 +80,8 @@ WrinkleGenerator::WrinkleGenerator(MonitorPointSet monitors,
   checkWrinkleParameters(parameters);
   Parameters = parameters;
   Embedding.embed(mesh, Monitors.monitorPoints);
-  Influence = WrinkleInfluence(Monitors, surfaceRest, influence);
+  Influence =
+    WrinkleInfluence(Monitors, surfaceRest.positions, surfaceRest.triangles, InfluenceSettings);
   Current.resize(Monitors.size());
   Previous.resize(Monitors.size());
   Reference.reserve(Monitors.size());
@@ -89,7 +91,7 @@ WrinkleGenerator::WrinkleGenerator(MonitorPointSet monitors,
   WrinklePoints.reserve(window);
   Displaced.reserve(Influence.affectedPoints().size());
   Displacements.reserve(Influence.affectedPoints().size());
-  SlotOfPoint.assign(surfaceRest.size(), -1);
+  SlotOfPoint.assign(surfaceRest.vertexCount(), -1);
 }
 
 void WrinkleGenerator::setParameters(const WrinkleParameters& parameters)
@@ -131,7 +133,7 @@ void WrinkleGenerator::update(const std::vector<Vector3>& nodePositions,
   }
   Displaced.clear();
   Displacements.clear();
-  if (NeedWrinkles)
+  if (NeedWrinkles && WindowEnd > WindowBegin)
   {
     computeWrinklePoints();
     propagate();
@@ -141,6 +143,11 @@ void WrinkleGenerator::update(const std::vector<Vector3>& nodePositions,
 
 void WrinkleGenerator::selectWindow(const Vector3& contact)
 {
+  if (Current.empty()) // every monitor point was cut away
+  {
+    WindowBegin = WindowEnd = 0;
+    return;
+  }
   std::size_t nearest = 0;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < Current.size(); ++i)

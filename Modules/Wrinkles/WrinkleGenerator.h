@@ -36,6 +36,8 @@ namespace thintissue
 {
 
 class CollisionScene;
+class TissueCutter;
+struct TissueCutReport;
 
 /// Where the wrinkle offset W(k) (P^mc - P^w0) / |P^mc - P^w0| is added.
 enum class WrinkleAnchor
@@ -98,14 +100,24 @@ class THINTISSUEWRINKLES_EXPORT WrinkleGenerator
 public:
   WrinkleGenerator() = default;
   /// Embeds the monitor points in `mesh` (rest node positions; the nearest
-  /// hexahedron for points outside) and finds the surface points each
-  /// affects among `surfaceRest`. Throws InvalidInputError on bad
-  /// parameters or an empty set.
+  /// hexahedron for points outside) and finds the points of `surfaceRest`
+  /// (the visual surface at rest) each affects. Throws InvalidInputError on
+  /// bad parameters or an empty set.
   WrinkleGenerator(MonitorPointSet monitors,
     const HexahedralMesh& mesh,
-    const std::vector<Vector3>& surfaceRest,
+    const TriangleMesh& surfaceRest,
     const WrinkleParameters& parameters = {},
     const WrinkleInfluenceSettings& influence = {});
+
+  /// After `cutter` cut the tissue (thesis 5.3; `report` is what cut()
+  /// returned): monitor points in duplicated hexahedra move to the copy
+  /// holding their nearest collision triangle; those whose nearest triangle
+  /// was removed (a piece dropped or handed over) are dropped; a curve is
+  /// split where a point was dropped or where the cut parted two
+  /// consecutive points (their hexahedra share no node); the affected
+  /// surface points are found again on the cut visual surface. The
+  /// wrinkles stop (a cut is no reversal); the rest stays valid.
+  void followCut(const TissueCutter& cutter, const TissueCutReport& report);
 
   void setParameters(const WrinkleParameters& parameters);
   const WrinkleParameters& parameters() const { return Parameters; }
@@ -147,11 +159,14 @@ private:
   void updateReference(const WrinkleContactState& contacts);
   void computeWrinklePoints();
   void propagate();
+  std::vector<char> placeAfterCut(const TissueCutter& cutter, const TissueCutReport& report);
+  void dropAndSplit(const std::vector<char>& keep, const HexahedralMesh& mesh);
 
   MonitorPointSet Monitors;
   HexahedralEmbedding Embedding;
   WrinkleInfluence Influence;
   WrinkleParameters Parameters;
+  WrinkleInfluenceSettings InfluenceSettings;
   std::vector<Vector3> Current;
   std::vector<Vector3> Previous;
   std::vector<Vector3> Reference;

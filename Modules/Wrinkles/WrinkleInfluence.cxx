@@ -167,10 +167,155 @@ struct RawEntry
   double attenuation;
 };
 
+/// Vertex neighbours through triangle edges (CSR); `used` marks the
+/// vertices of at least one triangle.
+struct SurfaceNeighbours
+{
+  std::vector<int> start;
+  std::vector<int> next;
+  std::vector<char> used;
+
+  SurfaceNeighbours(std::size_t vertexCount, const std::vector<Triangle>& triangles)
+    : start(vertexCount + 1, 0)
+    , used(vertexCount, 0)
+  {
+    for (const Triangle& t : triangles)
+    {
+      for (const int v : t)
+      {
+        start[v + 1] += 2;
+        used[v] = 1;
+      }
+    }
+    for (std::size_t v = 0; v < vertexCount; ++v)
+    {
+      start[v + 1] += start[v];
+    }
+    next.resize(start.back());
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (const Triangle& t : triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        next[fill[t[k]]++] = t[(k + 1) % 3];
+        next[fill[t[k]]++] = t[(k + 2) % 3];
+      }
+    }
+  }
+};
+
+/// The surface points one monitor point affects, before normalising the
+/// blend (see the header): appended to `raw`.
+class AffectedPointSearch
+{
+public:
+  AffectedPointSearch(const std::vector<Vector3>& surface,
+    const std::vector<Triangle>& triangles,
+    const PointGrid& grid,
+    double negligibleBlend)
+    : Surface(surface)
+    , Grid(grid)
+    , NegligibleBlend(negligibleBlend)
+    , Connected(!triangles.empty())
+    , Neighbours(Connected ? surface.size() : 0, triangles)
+    , Mark(Connected ? surface.size() : 0, 0)
+  {
+  }
+
+  void find(int monitor, const MonitorReach& r, std::vector<RawEntry>& raw)
+  {
+    const std::size_t first = raw.size();
+    Distance.clear();
+    Grid.forEachNear(
+      r.origin, std::min(r.sphereRadius, r.length), [&](int j) { consider(monitor, r, j, raw); });
+    if (Connected)
+    {
+      keepConnected(raw, first);
+    }
+  }
+
+private:
+  void consider(int monitor, const MonitorReach& r, int j, std::vector<RawEntry>& raw)
+  {
+    if (Connected && !Neighbours.used[j])
+    {
+      return;
+    }
+    const Vector3 v = Surface[j] - r.origin;
+    const double along = v.dot(r.direction);
+    const double squared = v.squaredNorm();
+    if (std::abs(along) >= r.length || squared > r.sphereRadius * r.sphereRadius)
+    {
+      return;
+    }
+    const double across2 = std::max(0.0, squared - along * along);
+    const double blend = std::exp(-across2 / (2.0 * r.rho * r.rho));
+    if (blend < NegligibleBlend)
+    {
+      return;
+    }
+    raw.push_back(
+      RawEntry{ monitor, j, blend, std::exp(-along * along / (2.0 * r.sigma * r.sigma)) });
+    Distance.push_back(squared);
+  }
+
+  /// Keeps the candidates [first, raw.end()) connected through candidates
+  /// to the one nearest the monitor point.
+  void keepConnected(std::vector<RawEntry>& raw, std::size_t first)
+  {
+    if (raw.size() == first)
+    {
+      return;
+    }
+    std::size_t seed = first;
+    for (std::size_t e = first; e < raw.size(); ++e)
+    {
+      Mark[raw[e].point] = 1; // candidate
+      seed = Distance[e - first] < Distance[seed - first] ? e : seed;
+    }
+    Queue.assign(1, raw[seed].point);
+    Mark[raw[seed].point] = 2; // reached
+    for (std::size_t q = 0; q < Queue.size(); ++q)
+    {
+      const int v = Queue[q];
+      for (int n = Neighbours.start[v]; n < Neighbours.start[v + 1]; ++n)
+      {
+        const int w = Neighbours.next[n];
+        if (Mark[w] == 1)
+        {
+          Mark[w] = 2;
+          Queue.push_back(w);
+        }
+      }
+    }
+    std::size_t kept = first;
+    for (std::size_t e = first; e < raw.size(); ++e)
+    {
+      const bool reached = Mark[raw[e].point] == 2;
+      Mark[raw[e].point] = 0;
+      if (reached)
+      {
+        raw[kept++] = raw[e];
+      }
+    }
+    raw.resize(kept);
+  }
+
+  const std::vector<Vector3>& Surface;
+  const PointGrid& Grid;
+  double NegligibleBlend;
+  bool Connected;
+  SurfaceNeighbours Neighbours;
+  std::vector<int> Mark;
+  std::vector<int> Queue;
+  std::vector<double> Distance;
+};
+
 } // namespace
 
 WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
   const std::vector<Vector3>& surfaceRest,
+  const std::vector<Triangle>& triangles,
   const WrinkleInfluenceSettings& settings)
 {
   const std::vector<MonitorReach> reaches = reachesOf(monitors, settings);
@@ -186,32 +331,15 @@ WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
   const PointGrid grid(surfaceRest, box, largest);
 
   std::vector<RawEntry> raw;
-  std::vector<double> blendSum(surfaceRest.size(), 0.0);
+  AffectedPointSearch search(surfaceRest, triangles, grid, settings.negligibleBlend);
   for (std::size_t i = 0; i < reaches.size(); ++i)
   {
-    const MonitorReach& r = reaches[i];
-    const double reach = std::min(r.sphereRadius, r.length);
-    grid.forEachNear(r.origin,
-      reach,
-      [&](int j)
-      {
-        const Vector3 v = surfaceRest[j] - r.origin;
-        const double along = v.dot(r.direction);
-        const double squared = v.squaredNorm();
-        if (std::abs(along) >= r.length || squared > r.sphereRadius * r.sphereRadius)
-        {
-          return;
-        }
-        const double across2 = std::max(0.0, squared - along * along);
-        const double blend = std::exp(-across2 / (2.0 * r.rho * r.rho));
-        if (blend < settings.negligibleBlend)
-        {
-          return;
-        }
-        raw.push_back(RawEntry{
-          static_cast<int>(i), j, blend, std::exp(-along * along / (2.0 * r.sigma * r.sigma)) });
-        blendSum[j] += blend;
-      });
+    search.find(static_cast<int>(i), reaches[i], raw);
+  }
+  std::vector<double> blendSum(surfaceRest.size(), 0.0);
+  for (const RawEntry& e : raw)
+  {
+    blendSum[e.point] += e.blend;
   }
   // raw is already grouped by monitor, in increasing order.
   Offsets.assign(monitors.size() + 1, 0);

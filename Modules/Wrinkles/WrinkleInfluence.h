@@ -4,8 +4,10 @@
 // Surface point P^s is affected by monitor point P^m0 when its projection
 // P^p onto the region line L^r = P^r0 - P^m0 is nearer to P^m0 than the
 // region point (|P^p - P^m0| < |L^r|, on either side of P^m0, so that the
-// rim beyond an inset monitor point moves too) and it lies inside a sphere
-// around P^m0. A point may be affected by several monitor points.
+// rim beyond an inset monitor point moves too), it lies inside a sphere
+// around P^m0, and (given the surface's triangles) it is connected to the
+// surface point nearest P^m0 through such points. A point may be affected
+// by several monitor points.
 //
 // Weights: the monitor point's displacement reaches the surface point
 // attenuated by a Gaussian of the distance along the region line,
@@ -50,9 +52,14 @@ class THINTISSUEWRINKLES_EXPORT WrinkleInfluence
 public:
   WrinkleInfluence() = default;
   /// Finds the affected points of `surfaceRest` (the visual vertices at
-  /// rest). Cost: the surface points near each monitor point (a grid).
+  /// rest). With the surface's `triangles`, only the points connected
+  /// through them to the monitor point's nearest one count (and only points
+  /// of a triangle): the lips of a cut do not move each other. Cost: the
+  /// surface points near each monitor point (a grid), and one pass over the
+  /// triangles.
   WrinkleInfluence(const MonitorPointSet& monitors,
     const std::vector<Vector3>& surfaceRest,
+    const std::vector<Triangle>& triangles = {},
     const WrinkleInfluenceSettings& settings = {});
 
   std::size_t monitorCount() const { return Offsets.size() - 1; }

@@ -67,7 +67,7 @@ PressedMeniscus pressedMeniscus(MeniscusTearType tear)
 /// dent of radius 4 mm around the contact, with the wrinkles of `p`.
 vtkSmartPointer<vtkPolyData> wrinkledSurface(const PressedMeniscus& m, const WrinkleParameters& p)
 {
-  WrinkleGenerator generator(m.monitors, m.model.simulation, m.model.visual.positions, p);
+  WrinkleGenerator generator(m.monitors, m.model.simulation, m.model.visual, p);
   WrinkleContactState contacts;
   contacts.lowerSurfaceContacts = 5;
   contacts.instrumentTouches = true;

@@ -37,7 +37,7 @@ struct PressScript
   }
   WrinkleGenerator generator(const WrinkleParameters& p = {}) const
   {
-    return WrinkleGenerator(c.monitors, c.model.simulation, c.model.visual.positions, p);
+    return WrinkleGenerator(c.monitors, c.model.simulation, c.model.visual, p);
   }
   /// Runs `press` steps down then `release` steps up; returns the depth.
   double run(WrinkleGenerator& g, int press, int release, int lower = 5) const
@@ -282,7 +282,8 @@ TEST(WrinkleGenerator, BadParametersAreRefused)
   p.startContacts = -2;
   EXPECT_THROW(g.setParameters(p), InvalidInputError);
   EXPECT_EQ(g.parameters().startContacts, 0); // kept
-  EXPECT_THROW(WrinkleGenerator(MonitorPointSet{}, s.c.model.simulation, {}), InvalidInputError);
+  EXPECT_THROW(
+    WrinkleGenerator(MonitorPointSet{}, s.c.model.simulation, TriangleMesh{}), InvalidInputError);
 }
 
 TEST(WrinkleGenerator, ProbePressingTheInnerBorderOntoThePlateauThenLiftingWrinklesIt)
@@ -310,7 +311,7 @@ TEST(WrinkleGenerator, ProbePressingTheInnerBorderOntoThePlateauThenLiftingWrink
   scene.addTool(probe);
   scene.addObstacle(tibia);
   scene.addObstacle(cartilage);
-  WrinkleGenerator wrinkles(c.monitors, c.model.simulation, c.model.visual.positions);
+  WrinkleGenerator wrinkles(c.monitors, c.model.simulation, c.model.visual);
 
   // 1.5 mm in from the middle monitor point, 3 mm above it.
   const std::size_t middle = c.monitors.size() / 2;

@@ -1,0 +1,180 @@
+// WrinkleGenerator::followCut: the monitor points after a cut (thesis 5.3
+// changes the hexahedra and the visual surface the wrinkles live on).
+#include "WrinkleGenerator.h"
+
+#include "MeshQueries.h"
+#include "TissueCutter.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace thintissue
+{
+
+namespace
+{
+
+/// The collision triangle nearest `point` (rest positions) among those in
+/// the copies of hexahedron h; -1 if they hold none.
+int nearestTriangle(const TissueCutter& cutter, int h, const Vector3& point)
+{
+  const auto& rest = cutter.collision().restPositions();
+  const auto& triangles = cutter.collision().triangles();
+  int best = -1;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const int copy : cutter.branches().copiesOf(h))
+  {
+    for (const int t : cutter.branches().trianglesOf(copy))
+    {
+      const Triangle& c = triangles[t];
+      const double d =
+        (closestPointOnTriangle(point, rest[c[0]], rest[c[1]], rest[c[2]]) - point).squaredNorm();
+      if (d < nearest)
+      {
+        nearest = d;
+        best = t;
+      }
+    }
+  }
+  return best;
+}
+
+bool shareANode(const Hexahedron& a, const Hexahedron& b)
+{
+  for (const int n : a)
+  {
+    if (std::find(b.begin(), b.end(), n) != b.end())
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+} // namespace
+
+void WrinkleGenerator::followCut(const TissueCutter& cutter, const TissueCutReport& report)
+{
+  if (!report.changed() && report.removedPieces == 0)
+  {
+    return;
+  }
+  const std::vector<char> keep = placeAfterCut(cutter, report);
+  dropAndSplit(keep, cutter.simulation());
+  if (cutter.hasVisual())
+  {
+    // Only the triangles still part of the tissue carry wrinkles.
+    const TriangleMesh& visual = cutter.visual().mesh();
+    const std::vector<char> active = cutter.activeVisualTriangles();
+    std::vector<Triangle> shown;
+    for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+    {
+      if (active[t])
+      {
+        shown.push_back(visual.triangles[t]);
+      }
+    }
+    Influence = WrinkleInfluence(Monitors, visual.positions, shown, InfluenceSettings);
+    SlotOfPoint.assign(visual.vertexCount(), -1);
+  }
+  Displaced.clear();
+  Displacements.clear();
+  Displaced.reserve(Influence.affectedPoints().size());
+  Displacements.reserve(Influence.affectedPoints().size());
+  NeedWrinkles = false;
+  Reference.clear();
+  WindowBegin = WindowEnd = 0;
+}
+
+/// Moves monitor points to the copy of their hexahedron holding their
+/// nearest collision triangle; returns which survive.
+std::vector<char> WrinkleGenerator::placeAfterCut(const TissueCutter& cutter,
+  const TissueCutReport& report)
+{
+  const HexahedralMesh& mesh = cutter.simulation();
+  Embedding.updateHexahedra(mesh, report.simulation.renodedHexahedra);
+  std::vector<char> keep(Monitors.size(), 1);
+  for (std::size_t i = 0; i < Monitors.size(); ++i)
+  {
+    const int h = Embedding.hexahedron(i);
+    if (cutter.branches().copiesOf(h).size() < 2 && report.removedPieces == 0)
+    {
+      continue;
+    }
+    const int t = nearestTriangle(cutter, h, Monitors.monitorPoints[i]);
+    if (t < 0)
+    {
+      continue;
+    }
+    if (!cutter.isActive(t))
+    {
+      keep[i] = 0;
+      continue;
+    }
+    const int copy = cutter.branches().copyHolding(h, t);
+    if (copy >= 0 && copy != h)
+    {
+      Embedding.setPoint(i, copy, Embedding.localCoordinates(i));
+    }
+  }
+  return keep;
+}
+
+/// Drops the points not kept and splits curves where points were dropped
+/// or consecutive points' hexahedra share no node.
+void WrinkleGenerator::dropAndSplit(const std::vector<char>& keep, const HexahedralMesh& mesh)
+{
+  MonitorPointSet survivors;
+  std::vector<int> hexahedra;
+  std::vector<Vector3> local, current, previous;
+  std::vector<Vector3> monitor, region;
+  std::vector<double> thickness;
+  const auto closeCurve = [&]
+  {
+    if (monitor.size() >= 2)
+    {
+      survivors.appendCurve(monitor, region, thickness);
+    }
+    else if (!monitor.empty()) // a lone point cannot wave: drop it too
+    {
+      hexahedra.pop_back();
+      local.pop_back();
+      current.pop_back();
+      previous.pop_back();
+    }
+    monitor.clear();
+    region.clear();
+    thickness.clear();
+  };
+  for (std::size_t c = 0; c < Monitors.curveCount(); ++c)
+  {
+    for (int i = Monitors.curveStarts[c]; i < Monitors.curveStarts[c + 1]; ++i)
+    {
+      const bool parted =
+        !monitor.empty() && !shareANode(mesh.hexahedra[hexahedra.back()],
+                              mesh.hexahedra[Embedding.hexahedron(static_cast<std::size_t>(i))]);
+      if (!keep[i] || parted)
+      {
+        closeCurve();
+      }
+      if (!keep[i])
+      {
+        continue;
+      }
+      monitor.push_back(Monitors.monitorPoints[i]);
+      region.push_back(Monitors.regionPoints[i]);
+      thickness.push_back(Monitors.thickness[i]);
+      hexahedra.push_back(Embedding.hexahedron(static_cast<std::size_t>(i)));
+      local.push_back(Embedding.localCoordinates(static_cast<std::size_t>(i)));
+      current.push_back(Current[i]);
+      previous.push_back(Previous[i]);
+    }
+    closeCurve();
+  }
+  Monitors = std::move(survivors);
+  Embedding.assign(mesh, std::move(hexahedra), std::move(local));
+  Current = std::move(current);
+  Previous = std::move(previous);
+}
+
+} // namespace thintissue
