@@ -286,7 +286,11 @@ std::vector<WrinkleDataCurve> deriveWrinkleDataCurves(const TriangleMesh& collis
       largest = std::max(largest, radii[v]);
     }
   }
-  const double threshold = smallest + settings.thinFraction * (largest - smallest);
+  // Radii within a few percent of each other (a slab, the steak): the
+  // whole border is thin, not the vertices that happen to be smallest.
+  const bool uniform = largest - smallest <= settings.uniformTolerance * largest;
+  const double threshold =
+    uniform ? largest : smallest + settings.thinFraction * (largest - smallest);
   std::vector<char> thin(collision.vertexCount(), 0);
   std::vector<Run> runs;
   for (const Run& loop : loops)

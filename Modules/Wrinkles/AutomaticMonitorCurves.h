@@ -19,6 +19,9 @@ struct AutomaticMonitorSettings
   /// A border vertex is thin when its radius is at most r_min + thinFraction
   /// (r_max - r_min), over all border vertices.
   double thinFraction = 0.35;
+  /// When r_max - r_min is at most this fraction of r_max, every border
+  /// vertex is thin (a border of uniform thickness).
+  double uniformTolerance = 0.05;
   /// Runs are split where the border turns by more than this (radians).
   double cornerAngle = 1.0;
   /// Which part of the thin border: with `useNearPoint`, the run of thin

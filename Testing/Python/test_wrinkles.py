@@ -71,6 +71,20 @@ class WrinklesTest(unittest.TestCase):
             self.assertLess(math.hypot(x[0] - self.contact[0], x[1] - self.contact[1]), 12.0)
         self.assertGreater(bound, 0.0)
 
+    def test_automatic_monitor_points_from_the_collision_mesh(self):
+        automatic = thintissue.vtkAutomaticMonitorPointsFilter()
+        automatic.SetInputConnection(self.meniscus.GetOutputPort(1))
+        automatic.Update()
+        data = automatic.GetOutput()
+        self.assertGreater(data.GetNumberOfPoints(), 10)
+        self.assertIsNotNone(data.GetPointData().GetArray("RegionPoint"))
+        self.wrinkles.SetMonitorPointsConnection(automatic.GetOutputPort())
+        self.wrinkles.SetMonitorPointSpacing(0.16)
+        for k in range(1, 11):
+            self.step(0.1 * k)
+        self.step(0.9)
+        self.assertTrue(self.wrinkles.GetWrinkling())
+
     def test_parameters_round_trip(self):
         f = self.wrinkles
         f.SetFrequency(7 * math.pi)

@@ -3,6 +3,7 @@
 // step by step; wrinkles on the release, only where the monitor points
 // reach; bad inputs reported.
 #include "ThinTissueVtkErrorObserver.h"
+#include "vtkAutomaticMonitorPointsFilter.h"
 #include "vtkEmbeddedSurfaceDeformationFilter.h"
 #include "vtkHexahedralEmbeddingFilter.h"
 #include "vtkMeniscusSource.h"
@@ -17,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -167,4 +169,51 @@ TEST(WrinkleDisplacementFilter, BadInputsAreReportedWithAnEmptyOutput)
   p.step(0.1);
   EXPECT_TRUE(errors->all.empty()) << errors->all;
   EXPECT_GT(p.wrinkles->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+TEST(AutomaticMonitorPointsFilter, DerivedMonitorPointsDriveTheWrinkles)
+{
+  WrinklePipeline p;
+  vtkNew<vtkAutomaticMonitorPointsFilter> automatic;
+  automatic->SetInputConnection(p.meniscus->GetOutputPort(vtkMeniscusSource::CollisionPort));
+  automatic->Update();
+  vtkPolyData* data = automatic->GetOutput();
+  ASSERT_GT(data->GetNumberOfPoints(), 10);
+  EXPECT_EQ(data->GetNumberOfLines(), 1);
+  ASSERT_NE(data->GetPointData()->GetArray("RegionPoint"), nullptr);
+  ASSERT_NE(data->GetPointData()->GetArray("Thickness"), nullptr);
+  // On the inner border: near the model's own monitor points.
+  vtkPolyData* model = p.meniscus->GetMonitorPointsOutput();
+  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+  {
+    double x[3];
+    data->GetPoint(i, x);
+    double nearest = 1e9;
+    for (vtkIdType j = 0; j < model->GetNumberOfPoints(); ++j)
+    {
+      double y[3];
+      model->GetPoint(j, y);
+      nearest = std::min(nearest, std::hypot(x[0] - y[0], x[1] - y[1]));
+    }
+    EXPECT_LT(nearest, 1.5) << "automatic monitor data point " << i;
+  }
+  p.wrinkles->SetMonitorPointsConnection(automatic->GetOutputPort());
+  p.wrinkles->SetMonitorPointSpacing(0.16);
+  for (int k = 1; k <= 10; ++k)
+  {
+    p.step(0.1 * k);
+  }
+  p.step(0.9);
+  EXPECT_TRUE(p.wrinkles->GetWrinkling());
+  EXPECT_GT(p.wrinkles->GetNumberOfDisplacedPoints(), 20);
+  // Without radii: reported.
+  vtkNew<vtkPolyData> bare;
+  bare->DeepCopy(p.meniscus->GetCollisionOutput());
+  bare->GetPointData()->RemoveArray("Radius");
+  automatic->SetInputData(bare);
+  vtkNew<thintissue::testing::ErrorCounter> errors;
+  automatic->AddObserver(vtkCommand::ErrorEvent, errors);
+  automatic->Update();
+  EXPECT_NE(errors->all.find("Radius"), std::string::npos) << errors->all;
+  EXPECT_EQ(automatic->GetOutput()->GetNumberOfPoints(), 0);
 }

@@ -1,14 +1,21 @@
 // Monitor and region data points derived from the collision mid-surface:
 // on the meniscus models they land on the inner rim where the models put
-// theirs; on a sheet thinning toward one side, on that side.
+// theirs; on a sheet thinning toward one side, on that side; on a prepared
+// meniscus and the prepared steak (../shared/data), on the thinnest border.
 #include "AutomaticMonitorCurves.h"
+#include "CollisionMeshGeneration.h"
+#include "MeshImport.h"
 #include "MeshQueries.h"
 #include "ThinSheetModel.h"
 #include "ThinTissueError.h"
+#include "ThinTissueTestSupport.h"
+#include "TriangleMeshAdjacency.h"
 #include "WrinkleTestHelpers.h"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <iostream>
 #include <limits>
 
 using namespace thintissue;
@@ -157,4 +164,75 @@ TEST(AutomaticMonitorCurves, MeshesWithoutBorderOrWithWrongRadiiAreRefused)
     EXPECT_NE(std::string(e.what()).find("no free border"), std::string::npos) << e.what();
   }
   EXPECT_THROW(deriveWrinkleDataCurves(m.collision, { 1.0, 2.0 }), InvalidInputError);
+}
+
+namespace
+{
+
+/// The border vertices' radii of `mesh`: all, and those the automatic
+/// curves chose (monitor data points are border vertices).
+std::pair<double, double> meanBorderAndChosenRadius(const TriangleMesh& mesh,
+  const std::vector<double>& radii,
+  const std::vector<WrinkleDataCurve>& curves)
+{
+  const TriangleMeshAdjacency adjacency(mesh);
+  double border = 0.0, chosen = 0.0;
+  int borderCount = 0, chosenCount = 0;
+  for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
+  {
+    if (adjacency.isBorderEdge(static_cast<int>(e)))
+    {
+      border += radii[adjacency.edge(static_cast<int>(e))[0]];
+      ++borderCount;
+    }
+  }
+  for (const auto& c : curves)
+  {
+    for (const double t : c.thickness)
+    {
+      chosen += 0.5 * t;
+      ++chosenCount;
+    }
+  }
+  return { border / borderCount, chosen / chosenCount };
+}
+
+} // namespace
+
+TEST(AutomaticMonitorCurves, OnAPreparedMeniscusTheInnerRimAndOnTheSteakItsThinnestBorder)
+{
+  // The meniscus prepared from its visual surface alone (no model data).
+  const MeniscusModel m = makeMeniscus();
+  const GeneratedCollisionMesh prepared = makeCollisionMidSurface(m.visual);
+  const std::vector<double>& radii = prepared.mesh.pointAttributes.get("Radius").values;
+  const auto automatic = deriveWrinkleDataCurves(prepared.mesh, radii);
+  ASSERT_FALSE(automatic.empty());
+  const auto model = wrinkleDataOf(m.monitorCurves);
+  EXPECT_GT(coverage(model, automatic, 2.0), 0.7);
+  const auto [border, chosen] = meanBorderAndChosenRadius(prepared.mesh, radii, automatic);
+  EXPECT_LT(chosen, 0.5 * border);
+  EXPECT_NO_THROW(resampleMonitorCurves(automatic, 0.2));
+
+  const std::string data = thintissue::testing::sharedDataDirectory();
+  const std::string steakPath = data + "/steak/steak.obj";
+  if (data.empty() || !std::filesystem::exists(steakPath))
+  {
+    GTEST_SKIP() << "../shared/data/steak not present";
+  }
+  const GeneratedCollisionMesh steak = makeCollisionMidSurface(readTriangleMesh(steakPath));
+  const std::vector<double>& steakRadii = steak.mesh.pointAttributes.get("Radius").values;
+  const auto steakCurves = deriveWrinkleDataCurves(steak.mesh, steakRadii);
+  ASSERT_FALSE(steakCurves.empty());
+  const auto [steakBorder, steakChosen] =
+    meanBorderAndChosenRadius(steak.mesh, steakRadii, steakCurves);
+  // The steak is a slab: its border is about equally thin all round.
+  EXPECT_LE(steakChosen, steakBorder * (1.0 + 1e-9));
+  std::size_t chosenCount = 0;
+  for (const auto& c : steakCurves)
+  {
+    chosenCount += c.monitorPoints.size();
+  }
+  EXPECT_GE(chosenCount, 20u);
+  std::cout << "steak: mean border radius " << steakBorder << ", chosen " << steakChosen << " in "
+            << steakCurves.size() << " curves\n";
 }
