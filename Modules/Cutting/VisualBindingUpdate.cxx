@@ -199,17 +199,14 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
   auto& parent = buffers.parent;
   parent.resize(count + triangleCount);
   std::iota(parent.begin(), parent.end(), 0);
-  auto& corners = buffers.corners;
-  corners.resize(triangleCount);
+  const auto& corners = region.newLocalTriangles;
   auto& borderEdges = buffers.borderEdges; // (a, b, triangle), a < b
   borderEdges.clear();
   auto& representative = buffers.representative; // per triangle: its set
   representative.resize(triangleCount);
   for (std::size_t i = 0; i < triangleCount; ++i)
   {
-    Triangle& tri = corners[i];
-    for (int k = 0; k < 3; ++k)
-      tri[k] = context.local(Mesh.triangles[region.newTriangles[i]][k]);
+    const Triangle& tri = corners[i];
     // A triangle is in the set of its first inner corner (joined with the
     // others), else in its own.
     int self = -1;
@@ -270,7 +267,7 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
     }
     triangleIn[i] = piece;
     ++pieceStart[piece + 1];
-    for (int v : buffers.corners[i])
+    for (int v : region.newLocalTriangles[i])
       centroids[piece] += region.planar[v] / 3.0;
   }
   const std::size_t pieces = centroids.size();
@@ -300,7 +297,7 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
     rebindPiece(region,
       members.data() + pieceStart[p],
       size,
-      buffers.corners,
+      region.newLocalTriangles,
       onCut,
       split.children[c],
       inverses[c],

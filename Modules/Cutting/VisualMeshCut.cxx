@@ -786,7 +786,7 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
       region.triangles = Regions[split.parent][side];
       // Local vertices (CutContext::localIndex), the triangles in them; a
       // region has fewer vertices than triangles (plus its border).
-      std::vector<Triangle> triangles;
+      std::vector<Triangle>& triangles = region.localTriangles;
       triangles.reserve(region.triangles.size());
       region.vertices.reserve(region.triangles.size() + 64);
       region.parameters.reserve(region.triangles.size() + 64);
@@ -814,6 +814,7 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
       region.planar = regionPlane(region.parameters, triangles, isInner, frame);
       region.planar.reserve(room);
       region.frame = frame;
+      region.candidate.assign(region.triangles.size(), 0);
       for (const auto& corners : split.childCorners)
         region.pieces.push_back({ { bulgedPoint(frame, corners[0]),
           bulgedPoint(frame, corners[1]),
@@ -855,7 +856,7 @@ SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
   return SurfacePoint::atVertex(region.vertices[nearest]);
 }
 
-void CuttableVisualMesh::traceCut(const RegionCut& region,
+void CuttableVisualMesh::traceCut(RegionCut& region,
   double scale,
   CrossingPath& crossing,
   const CutContext& context)
@@ -921,7 +922,7 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
       buffers.nodes.push_back({ s, SurfacePoint::atVertex(region.vertices[i]) });
     }
   }
-  linkCrossedTriangles(region, tolerance, from, along, context);
+  linkCrossedTriangles(region, tolerance, from, along);
   groupLinks(buffers.links, buffers.nodes.size(), buffers.linkOffsets, buffers.linkTargets);
   if (!walkCut(
         buffers.nodes, buffers.linkOffsets, buffers.linkTargets, buffers.visited, crossing.path))
@@ -935,11 +936,10 @@ void CuttableVisualMesh::traceCut(const RegionCut& region,
 // Per region triangle, the crossing points on its border; a triangle with
 // two joins them (the cut passes through it): Buffers.links. Points inside
 // edges are made here, once per edge.
-void CuttableVisualMesh::linkCrossedTriangles(const RegionCut& region,
+void CuttableVisualMesh::linkCrossedTriangles(RegionCut& region,
   double tolerance,
   const Vector2& from,
-  const Vector2& along,
-  const CutContext& context)
+  const Vector2& along)
 {
   CutBuffers& buffers = Buffers;
   const auto& nodes = buffers.nodes;
@@ -955,24 +955,30 @@ void CuttableVisualMesh::linkCrossedTriangles(const RegionCut& region,
   };
   buffers.links.clear();
   auto& here = buffers.here;
-  for (int t : region.triangles)
+  // Before the loop the only nodes inside edges are the cut's ends; those
+  // made in it lie on edges whose ends are apart (never in a triangle
+  // wholly on one side).
+  const bool endsOnEdges = !nodes[0].point.isVertex() || !nodes[1].point.isVertex();
+  for (std::size_t i = 0; i < region.triangles.size(); ++i)
   {
-    const Triangle& tri = Mesh.triangles[t];
-    const int locals[3] = { context.local(tri[0]), context.local(tri[1]), context.local(tri[2]) };
+    const Triangle& locals = region.localTriangles[i];
     // Most triangles lie wholly on one side of the line: nothing to do.
     const double d0 = signedDistance[locals[0]], d1 = signedDistance[locals[1]],
                  d2 = signedDistance[locals[2]];
     if (((d0 > tolerance && d1 > tolerance && d2 > tolerance) ||
           (d0 < -tolerance && d1 < -tolerance && d2 < -tolerance)) &&
         vertexNode[locals[0]] < 0 && vertexNode[locals[1]] < 0 && vertexNode[locals[2]] < 0 &&
-        buffers.edgeNode(locals[0], locals[1]) < 0 && buffers.edgeNode(locals[1], locals[2]) < 0 &&
-        buffers.edgeNode(locals[2], locals[0]) < 0)
+        (!endsOnEdges || (buffers.edgeNode(locals[0], locals[1]) < 0 &&
+                           buffers.edgeNode(locals[1], locals[2]) < 0 &&
+                           buffers.edgeNode(locals[2], locals[0]) < 0)))
       continue;
+    // Only these triangles can hold a point of the traced path.
+    region.candidate[i] = 1;
     here.clear();
     for (int k = 0; k < 3; ++k)
     {
-      const int a = tri[k], b = tri[(k + 1) % 3];
       const int la = locals[k], lb = locals[(k + 1) % 3];
+      const int a = region.vertices[la], b = region.vertices[lb];
       if (vertexNode[la] >= 0 && (vertexNode[la] < 2 || onLine(la)))
         here.push_back(vertexNode[la]);
       int found = buffers.edgeNode(la, lb);
@@ -1024,6 +1030,7 @@ void CuttableVisualMesh::selectTouchedTriangles(int r,
   // an edge from it (then the edge is looked up).
   context.activate(region);
   region.newTriangles.reserve(region.triangles.size() + region.triangles.size() / 2);
+  region.newLocalTriangles.reserve(region.newTriangles.capacity());
   std::vector<char> mark(region.vertices.size(), 0);
   std::vector<std::uint64_t> edgePoints;
   for (const CrossingPath& crossing : region.crossings)
@@ -1042,17 +1049,21 @@ void CuttableVisualMesh::selectTouchedTriangles(int r,
   auto crossed = [&](int a, int b, char ma, char mb)
   {
     return (ma & 2) && (mb & 2) &&
-           std::binary_search(edgePoints.begin(), edgePoints.end(), edgeKey(a, b));
+           std::binary_search(
+             edgePoints.begin(), edgePoints.end(), edgeKey(region.vertices[a], region.vertices[b]));
   };
-  for (int t : region.triangles)
+  for (std::size_t i = 0; i < region.triangles.size(); ++i)
   {
-    const Triangle& tri = Mesh.triangles[t];
-    const char m[3] = {
-      mark[context.local(tri[0])], mark[context.local(tri[1])], mark[context.local(tri[2])]
-    };
-    bool touched = (m[0] | m[1] | m[2]) & 1;
-    for (int k = 0; k < 3 && !touched; ++k)
-      touched = crossed(tri[k], tri[(k + 1) % 3], m[k], m[(k + 1) % 3]);
+    const int t = region.triangles[i];
+    bool touched = false;
+    if (region.candidate[i])
+    {
+      const Triangle& tri = region.localTriangles[i];
+      const char m[3] = { mark[tri[0]], mark[tri[1]], mark[tri[2]] };
+      touched = (m[0] | m[1] | m[2]) & 1;
+      for (int k = 0; k < 3 && !touched; ++k)
+        touched = crossed(tri[k], tri[(k + 1) % 3], m[k], m[(k + 1) % 3]);
+    }
     if (touched)
     {
       triangles.push_back(t);
@@ -1061,6 +1072,7 @@ void CuttableVisualMesh::selectTouchedTriangles(int r,
     else
     {
       region.newTriangles.push_back(t);
+      region.newLocalTriangles.push_back(region.localTriangles[i]);
     }
   }
   context.deactivate(region);
@@ -1213,6 +1225,8 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
         };
       }
       region.newTriangles.push_back(t);
+      region.newLocalTriangles.push_back(
+        { { context.local(mapped[0]), context.local(mapped[1]), context.local(mapped[2]) } });
       context.changedTriangles.push_back(t);
     }
     context.deactivate(region);

@@ -183,15 +183,14 @@ private:
     std::vector<std::pair<int, int>> crossingsOf;
     /// assignPieces: per local vertex, whether it lies on a traced cut or
     /// the region's border; the traced cuts' edges (local, lower first);
-    /// union-find over local vertices then triangles; per triangle its
-    /// local corners; edges between special vertices (a, b, set); the
+    /// union-find over local vertices then triangles, and each
+    /// triangle's set; edges between special vertices (a, b, set); the
     /// pieces (per set root, then as a cursor), their starts in `members`
     /// and centroid sums; per triangle its piece.
     std::vector<char> special;
     std::vector<std::pair<int, int>> cutEdges;
     std::vector<int> parent;
     std::vector<int> representative;
-    std::vector<Triangle> corners;
     std::vector<std::array<int, 3>> borderEdges;
     std::vector<int> pieceOf;
     std::vector<int> pieceStart;
@@ -222,15 +221,11 @@ private:
     int vertex,
     const Vector3& barycentric,
     const CutContext& context) const;
-  void traceCut(const RegionCut& region,
-    double scale,
-    CrossingPath& crossing,
-    const CutContext& context);
-  void linkCrossedTriangles(const RegionCut& region,
+  void traceCut(RegionCut& region, double scale, CrossingPath& crossing, const CutContext& context);
+  void linkCrossedTriangles(RegionCut& region,
     double tolerance,
     const Vector2& from,
-    const Vector2& along,
-    const CutContext& context);
+    const Vector2& along);
 
   void splitEdgePaths(CutContext& context);
   void traceRegionCuts(CutContext& context);

@@ -47,6 +47,10 @@ struct CuttableVisualMesh::RegionCut
   int split = -1; ///< index into CollisionCutResult::splits
   int side = 0;   ///< 0: -, 1: +
   std::vector<int> triangles;
+  /// Per triangle: its corners as local vertices, and whether a traced
+  /// cut comes near it (only those can hold a point of a traced path).
+  std::vector<Triangle> localTriangles;
+  std::vector<char> candidate;
   /// The region's vertices (local index -> visual vertex) and, per local
   /// vertex, its barycentric parameters in the parent and its point in the
   /// plane the cuts are traced in (regionPlane). Dense arrays: a region is
@@ -60,6 +64,7 @@ struct CuttableVisualMesh::RegionCut
   std::vector<std::array<Vector2, 3>> pieces;
   std::vector<CrossingPath> crossings;
   std::vector<int> newTriangles;
+  std::vector<Triangle> newLocalTriangles; ///< their corners as local vertices
 };
 
 struct CuttableVisualMesh::CutContext
