@@ -1,0 +1,8 @@
+#include "HapticDevice.h"
+
+namespace thintissue
+{
+
+HapticDevice::~HapticDevice() = default;
+
+} // namespace thintissue

@@ -1,0 +1,94 @@
+#include "PortalMapping.h"
+
+#include "ThinTissueError.h"
+
+#include <cmath>
+
+namespace thintissue
+{
+
+namespace
+{
+
+void require(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    throw InvalidInputError("portal settings: " + what);
+  }
+}
+
+/// A unit vector perpendicular to unit `z`.
+Vector3 anyPerpendicular(const Vector3& z)
+{
+  const Vector3 other = std::abs(z.x()) < 0.9 ? Vector3::UnitX() : Vector3::UnitY();
+  return (other - other.dot(z) * z).normalized();
+}
+
+} // namespace
+
+void checkPortalSettings(const PortalSettings& s)
+{
+  require(s.portal.allFinite(), "the portal point is not finite");
+  require(s.inward.allFinite() && s.inward.norm() > 0.0, "the inward direction is zero");
+  require(
+    s.deviceToWorld.allFinite() &&
+      (s.deviceToWorld * s.deviceToWorld.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
+      s.deviceToWorld.determinant() > 0.0,
+    "deviceToWorld is not a rotation");
+  require(std::isfinite(s.scale) && s.scale > 0.0, "scale must be positive");
+  require(s.deviceCentre.allFinite(), "the device centre is not finite");
+  require(
+    std::isfinite(s.restInsertion) && s.restInsertion > 0.0, "the rest insertion must be positive");
+  require(std::isfinite(s.minimumInsertion) && s.minimumInsertion > 0.0,
+    "the minimum insertion must be positive");
+  require(s.stylusUp.allFinite() && s.stylusUp.norm() > 0.0, "the stylus up axis is zero");
+  require(
+    std::isfinite(s.forceScale) && s.forceScale >= 0.0, "the force scale must not be negative");
+}
+
+PortalMapping::PortalMapping(const PortalSettings& settings)
+  : Settings(settings)
+{
+  checkPortalSettings(settings);
+  Inward = settings.inward.normalized();
+}
+
+Vector3 PortalMapping::mappedTip(const Vector3& devicePosition) const
+{
+  return Settings.portal + Settings.restInsertion * Inward +
+         Settings.scale * (Settings.deviceToWorld * (devicePosition - Settings.deviceCentre));
+}
+
+RigidPose PortalMapping::instrumentPose(const HapticDeviceState& stylus) const
+{
+  Vector3 tip = mappedTip(stylus.position);
+  Vector3 towardPortal = Settings.portal - tip;
+  double depth = towardPortal.norm();
+  if (!(depth >= Settings.minimumInsertion))
+  {
+    // Too near the portal (or on it): keep the minimum insertion, along the
+    // stylus's offset if it has one, else straight in.
+    const Vector3 out = depth > 0.0 ? Vector3(-towardPortal / depth) : Inward;
+    tip = Settings.portal + Settings.minimumInsertion * out;
+    towardPortal = Settings.portal - tip;
+    depth = Settings.minimumInsertion;
+  }
+  const Vector3 z = towardPortal / depth;
+  const Vector3 up = Settings.deviceToWorld * (stylus.orientation * Settings.stylusUp);
+  Vector3 x = up - up.dot(z) * z;
+  x = x.norm() > 1e-9 * up.norm() ? Vector3(x.normalized()) : anyPerpendicular(z);
+  RigidPose pose;
+  pose.rotation.col(0) = x;
+  pose.rotation.col(1) = z.cross(x);
+  pose.rotation.col(2) = z;
+  pose.translation = tip;
+  return pose;
+}
+
+Vector3 PortalMapping::deviceForce(const Vector3& worldForce) const
+{
+  return Settings.forceScale * (Settings.deviceToWorld.transpose() * worldForce);
+}
+
+} // namespace thintissue

@@ -1,0 +1,80 @@
+#include "ServoThread.h"
+
+#include "ThinTissueError.h"
+
+#include <cmath>
+
+namespace thintissue
+{
+
+ServoThread::ServoThread(HapticServo& servo, double period, std::size_t periodCapacity)
+  : Servo(servo)
+  , Period(period)
+{
+  if (!(period > 0.0) || !std::isfinite(period))
+  {
+    throw InvalidInputError("servo thread: period " + std::to_string(period) + " must be positive");
+  }
+  Periods.reserve(periodCapacity);
+  Durations.reserve(periodCapacity);
+}
+
+ServoThread::~ServoThread()
+{
+  stop();
+}
+
+void ServoThread::start()
+{
+  if (Running.exchange(true))
+  {
+    return;
+  }
+  Periods.clear();
+  Durations.clear();
+  Start = std::chrono::steady_clock::now();
+  Thread = std::thread([this] { run(); });
+}
+
+void ServoThread::stop()
+{
+  Running.store(false);
+  if (Thread.joinable())
+  {
+    Thread.join();
+  }
+}
+
+double ServoThread::now() const
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - Start).count();
+}
+
+void ServoThread::run()
+{
+  using Clock = std::chrono::steady_clock;
+  const auto period =
+    std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(Period));
+  auto next = Start;
+  auto last = Start;
+  while (Running.load(std::memory_order_relaxed))
+  {
+    next += period;
+    std::this_thread::sleep_until(next);
+    const auto woke = Clock::now();
+    Servo.tick(std::chrono::duration<double>(woke - Start).count());
+    const auto done = Clock::now();
+    if (Periods.size() < Periods.capacity())
+    {
+      Periods.push_back(std::chrono::duration<double>(woke - last).count());
+      Durations.push_back(std::chrono::duration<double>(done - woke).count());
+    }
+    last = woke;
+    if (done > next + 10 * period)
+    {
+      next = done; // far behind (the machine stalled): do not burst to catch up
+    }
+  }
+}
+
+} // namespace thintissue
