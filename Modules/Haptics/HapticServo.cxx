@@ -53,7 +53,9 @@ void HapticServo::tick(double time)
       state.lastSequence = model.sequence;
       state.firstRendered = time;
     }
-    const Vector3 world = Slots[s].forceFeedback ? model.force(out.pose) : Vector3::Zero();
+    // An uncalibrated stylus's pose is wrong: no force from it.
+    const bool feel = Slots[s].forceFeedback && out.stylus.calibrated;
+    const Vector3 world = feel ? model.force(out.pose) : Vector3::Zero();
     out.force = state.safety.apply(state.portal.deviceForce(world), time, time - model.time);
     out.modelSequence = model.sequence;
     out.modelFirstRendered = state.firstRendered;
