@@ -2,7 +2,12 @@
 
 #include "ThinTissueError.h"
 
+#include <algorithm>
+
 #include <cmath>
+
+#include <pthread.h>
+#include <sched.h>
 
 namespace thintissue
 {
@@ -34,6 +39,11 @@ void ServoThread::start()
   Durations.clear();
   Start = std::chrono::steady_clock::now();
   Thread = std::thread([this] { run(); });
+  // A real-time priority when the system grants it (root, or rtprio in
+  // limits.conf): the period then keeps to the millisecond under load.
+  sched_param parameters{};
+  parameters.sched_priority = std::max(1, sched_get_priority_max(SCHED_FIFO) - 10);
+  RealTime = pthread_setschedparam(Thread.native_handle(), SCHED_FIFO, &parameters) == 0;
 }
 
 void ServoThread::stop()

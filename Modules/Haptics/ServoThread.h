@@ -31,6 +31,8 @@ public:
   /// Joins the thread; safe to call twice.
   void stop();
   bool running() const { return Running.load(); }
+  /// Whether the thread got a real-time (SCHED_FIFO) priority.
+  bool realTime() const { return RealTime; }
   /// Seconds since start() on the servo's clock (any thread).
   double now() const;
 
@@ -44,6 +46,7 @@ private:
   HapticServo& Servo;
   double Period;
   std::atomic<bool> Running{ false };
+  bool RealTime = false;
   std::thread Thread;
   std::vector<double> Periods;
   std::vector<double> Durations;
