@@ -109,6 +109,7 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
     const auto& x = Collision.restPositions();
     InitialArea += 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
   }
+  SinglePiece = activeMeshIsOnePiece();
   CollisionEmbedding.embed(Simulation, Collision.restPositions());
   for (int v = 0; v < static_cast<int>(Collision.vertexCount()); ++v)
   {
@@ -370,6 +371,7 @@ TissueCutReport TissueCutter::cut(const Blade& blade)
       // goes on without its visual cut rather than stop (the visual mesh
       // keeps its last state and its embedding).
       VisualFailed = true;
+      SinglePiece = false; // its pieces are looked at whole next time
       report.visualError = "visual cut of '" + Visual.mesh().name + "' failed: " + error.what() +
                            "; the visual mesh is no longer cut";
       report.totalMilliseconds = millisecondsSince(start);

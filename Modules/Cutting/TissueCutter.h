@@ -162,6 +162,8 @@ private:
   std::vector<int> reembedVisual(const TissueCutReport& report);
   bool moveToBranchCopy(int visualVertex);
   void handleFreePieces(TissueCutReport& report);
+  bool cutMaySeparate(const TissueCutReport& report);
+  bool activeMeshIsOnePiece() const;
   TissuePiece extractPiece(const std::vector<int>& triangles) const;
   void removePiece(const std::vector<int>& triangles);
 
@@ -182,6 +184,12 @@ private:
   std::vector<char> VisualSeen;
   /// Per collision triangle: 1 while it is part of the tissue.
   std::vector<char> Active;
+  /// Whether the active collision mesh was one piece after the last cut
+  /// (then a cut that separates nothing leaves the pieces alone), and the
+  /// floods' scratch (per triangle -1 between cuts; the queue).
+  bool SinglePiece = false;
+  std::vector<int> PieceLabel;
+  std::vector<int> PieceQueue;
   double InitialArea = 0.0;
 };
 

@@ -55,8 +55,103 @@ std::vector<char> TissueCutter::activeVisualTriangles() const
   return active;
 }
 
+bool TissueCutter::activeMeshIsOnePiece() const
+{
+  const auto& triangles = Collision.triangles();
+  const int count = static_cast<int>(triangles.size());
+  UnionFind pieces(triangles.size());
+  int first = -1;
+  for (int t = 0; t < count; ++t)
+  {
+    if (!Active[t])
+      continue;
+    first = first < 0 ? t : first;
+    for (int k = 0; k < 3; ++k)
+      for (int other : Collision.trianglesOfEdge(triangles[t][k], triangles[t][(k + 1) % 3]))
+        if (other > t && Active[other])
+          pieces.unite(t, other);
+  }
+  for (int t = 0; t < count; ++t)
+    if (Active[t] && pieces.find(t) != pieces.find(first))
+      return false;
+  return first >= 0;
+}
+
+// Whether the triangles a cut changed, and those around the vertices it
+// opened, may have come apart. Every triangle the cut left apart from the
+// rest is among them or joined to one of them (a triangle keeps its
+// neighbours unless one of them changed or it lies at an opened vertex), so
+// when a flood from each of them meets all the others the tissue is still
+// in one piece. The floods advance together and stop as soon as they have
+// all met: a cut that separates nothing costs what lies around it.
+bool TissueCutter::cutMaySeparate(const TissueCutReport& report)
+{
+  const auto& triangles = Collision.triangles();
+  std::vector<int>& label = PieceLabel; // per triangle: its seed, or -1
+  label.resize(triangles.size(), -1);
+  std::vector<int>& queue = PieceQueue;
+  queue.clear();
+  std::vector<int> parent;   // per seed: union-find over the seeds
+  std::vector<int> frontier; // per set root: triangles queued
+  auto root = [&parent](int x)
+  {
+    while (parent[x] != x)
+      x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  auto seed = [&](int t)
+  {
+    if (!Active[t] || label[t] >= 0)
+      return;
+    label[t] = static_cast<int>(parent.size());
+    parent.push_back(label[t]);
+    frontier.push_back(1);
+    queue.push_back(t);
+  };
+  for (int t : report.collision.changedTriangles)
+    seed(t);
+  for (const NewCollisionVertex& made : report.collision.newVertices)
+    if (made.duplicateOf >= 0)
+      for (int t : Collision.trianglesOfVertex(made.duplicateOf))
+        seed(t);
+  std::size_t sets = parent.size();
+  bool separate = false;
+  for (std::size_t next = 0; next < queue.size() && sets > 1 && !separate; ++next)
+  {
+    const int t = queue[next];
+    for (int k = 0; k < 3 && sets > 1; ++k)
+      for (int other : Collision.trianglesOfEdge(triangles[t][k], triangles[t][(k + 1) % 3]))
+      {
+        if (other < 0 || other == t || !Active[other])
+          continue;
+        const int a = root(label[t]);
+        if (label[other] < 0)
+        {
+          label[other] = a;
+          ++frontier[a];
+          queue.push_back(other);
+        }
+        else if (const int b = root(label[other]); b != a)
+        {
+          parent[std::max(a, b)] = std::min(a, b);
+          frontier[std::min(a, b)] += frontier[std::max(a, b)];
+          --sets;
+        }
+      }
+    // A set whose flood has run out is a piece of its own.
+    separate = --frontier[root(label[t])] == 0 && sets > 1;
+  }
+  for (int t : queue)
+    label[t] = -1;
+  return sets > 1;
+}
+
 void TissueCutter::handleFreePieces(TissueCutReport& report)
 {
+  // A tissue in one piece stays in one piece unless the cut separated it:
+  // then nothing else is looked at.
+  if (SinglePiece && !cutMaySeparate(report))
+    return;
   // Pieces of the active collision mesh, through shared edges.
   const auto& triangles = Collision.triangles();
   const int count = static_cast<int>(triangles.size());
@@ -85,7 +180,8 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
         attached[root] =
           attached[root] || (Solver ? Solver->isFixed(node) : Simulation.isFixed(node));
   }
-  if (members.size() < 2)
+  SinglePiece = members.size() < 2;
+  if (SinglePiece)
     return;
   // With nothing attached anywhere, the largest piece is the tissue.
   int largest = members.begin()->first;
@@ -95,6 +191,7 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
     anyAttached = anyAttached || attached[root];
     largest = area[root] > area[largest] ? root : largest;
   }
+  std::size_t remaining = members.size();
   for (const auto& [root, list] : members)
   {
     const bool free = anyAttached ? !attached[root] : root != largest;
@@ -107,7 +204,9 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
       report.handedOver.push_back(extractPiece(list));
     removePiece(list);
     ++report.removedPieces;
+    --remaining;
   }
+  SinglePiece = remaining == 1;
 }
 
 TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const

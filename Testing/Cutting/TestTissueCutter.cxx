@@ -526,6 +526,40 @@ TEST(TissueCutterSeparation, APieceCutFreeIsKeptDroppedOrHandedOver)
   }
 }
 
+TEST(TissueCutterSeparation, APieceCutFreeOverSeveralCutsGoesWithTheCutThatClosesItsOutline)
+{
+  // Three sides of a square in the middle of the attached sheet separate
+  // nothing; the fourth cuts the square free (the cutter then looks at the
+  // pieces again, though the cuts before left the tissue in one piece).
+  const BoundSheet& sheet = boundSheet();
+  CorotationalHexFem fem(sheet.model.simulation, softTissue(), smallSteps());
+  TissueCutterSettings settings;
+  settings.freePieces = FreePieceHandling::HandOver;
+  TissueCutter cutter(sheet.binding, sheet.model.simulation, &fem, settings);
+  auto side = [](const Vector2& a, const Vector2& b)
+  {
+    const Vector3 p(a.x(), a.y(), 0.0), q(b.x(), b.y(), 0.0), up(0.0, 0.0, 10.0);
+    return Blade::sweptSegment(p - up, p + up, q - up, q + up);
+  };
+  const Vector2 corners[4] = { { -26.0, -25.0 }, { -26.0, 31.0 }, { 30.0, 31.0 }, { 30.0, -25.0 } };
+  for (int c = 0; c < 4; ++c)
+  {
+    // Each side reaches a little past the corners, across its neighbours.
+    const Vector2 a = corners[c], b = corners[(c + 1) % 4];
+    const Vector2 past = 3.0 * (b - a).normalized();
+    const auto report = cutter.cut(side(a - past, b + past));
+    ASSERT_TRUE(report.changed()) << "side " << c;
+    EXPECT_TRUE(report.visualError.empty()) << report.visualError;
+    EXPECT_EQ(report.handedOver.size(), c == 3 ? 1u : 0u) << "side " << c;
+    EXPECT_EQ(report.removedPieces, c == 3 ? 1 : 0) << "side " << c;
+  }
+  EXPECT_TRUE(cutterIsConsistent(cutter, sheet.model.simulation));
+  EXPECT_LT(cutter.activeTriangleCount(), cutter.collision().triangleCount());
+  // Cuts elsewhere separate nothing more.
+  const auto report = cutter.cut(side({ -60.0, -40.0 }, { -60.0, 40.0 }));
+  EXPECT_EQ(report.removedPieces, 0);
+}
+
 TEST(TissueCutterSeparation, AHandedOverPieceIsABodyOfItsOwn)
 {
   const BoundSheet& sheet = boundSheet();
