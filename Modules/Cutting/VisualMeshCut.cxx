@@ -796,10 +796,18 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
         for (int k = 0; k < 3; ++k)
         {
           const int v = Mesh.triangles[t][k];
-          if (context.local(v) < 0)
-            context.addToActive(
-              region, v, parametersIn(v, split.parent, split.parentCorners), Vector2::Zero());
           local[k] = context.local(v);
+          if (local[k] >= 0)
+            continue;
+          local[k] = static_cast<int>(region.vertices.size());
+          // Most are inner vertices, bound to the parent itself.
+          const VisualVertexBinding& b = Bindings[v];
+          context.addToActive(region,
+            v,
+            b.kind == BindingKind::CollisionTriangle && b.element == split.parent
+              ? b.parameters
+              : parametersIn(v, split.parent, split.parentCorners),
+            Vector2::Zero());
         }
         triangles.push_back(local);
       }
