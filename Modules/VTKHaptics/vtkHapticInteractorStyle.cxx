@@ -260,6 +260,7 @@ void vtkHapticInteractorStyle::UpdateFromDevices()
     camera->SetPosition(view.eye.data());
     camera->SetFocalPoint(view.focalPoint.data());
     camera->SetViewUp(view.viewUp.data());
+    camera->SetViewAngle(this->FieldOfView);
     renderer->ResetCameraClippingRange();
   }
 }
@@ -474,6 +475,7 @@ void vtkHapticInteractorStyle::PrintSelf(ostream& os, vtkIndent indent)
      << this->InstrumentPortal[1] << " " << this->InstrumentPortal[2] << "\n"
      << indent << "WorkspaceScale: " << this->WorkspaceScale << "\n"
      << indent << "ViewingAngle: " << this->ViewingAngle << "\n"
+     << indent << "FieldOfView: " << this->FieldOfView << "\n"
      << indent << "DriveCamera: " << (this->DriveCamera ? "On" : "Off") << "\n"
      << indent << "RealTime: " << (this->RealTime ? "On" : "Off") << "\n"
      << indent << "TimerPeriod: " << this->TimerPeriod << "\n"

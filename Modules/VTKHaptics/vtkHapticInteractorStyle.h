@@ -87,10 +87,13 @@ public:
   ///@}
 
   ///@{
-  /// The arthroscope's viewing angle (degrees, default 30) and whether it
-  /// drives the active camera (default on).
+  /// The arthroscope's viewing angle (degrees off the shaft, default 30),
+  /// its field of view (degrees, default 70) and whether it drives the
+  /// active camera (default on).
   vtkSetClampMacro(ViewingAngle, double, 0.0, 90.0);
   vtkGetMacro(ViewingAngle, double);
+  vtkSetClampMacro(FieldOfView, double, 1.0, 170.0);
+  vtkGetMacro(FieldOfView, double);
   vtkSetMacro(DriveCamera, bool);
   vtkGetMacro(DriveCamera, bool);
   vtkBooleanMacro(DriveCamera, bool);
@@ -164,6 +167,7 @@ protected:
   double InstrumentInward[3] = { 0.0, 0.0, -1.0 };
   double WorkspaceScale = 1.0;
   double ViewingAngle = 30.0;
+  double FieldOfView = 70.0;
   bool DriveCamera = true;
   bool RealTime = true;
   int TimerPeriod = 16;

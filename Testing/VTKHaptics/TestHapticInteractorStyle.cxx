@@ -30,8 +30,10 @@ HapticTrajectory line(const Vector3& from, const Vector3& to, unsigned pressedAf
   HapticTrajectory t;
   for (int k = 0; k <= 10; ++k)
   {
-    t.samples.push_back(HapticSample{ 0.1 * k, from + 0.1 * k * (to - from),
-      Eigen::Quaterniond::Identity(), k >= 5 ? pressedAfterHalf : 0u });
+    t.samples.push_back(HapticSample{ 0.1 * k,
+      from + 0.1 * k * (to - from),
+      Eigen::Quaterniond::Identity(),
+      k >= 5 ? pressedAfterHalf : 0u });
   }
   return t;
 }
