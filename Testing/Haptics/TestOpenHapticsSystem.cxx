@@ -208,3 +208,44 @@ TEST(OpenHapticsSystem, ErrorsNameTheDeviceAndTheProblem)
   EXPECT_NE(after[0].find("'Left Device': over-force shut-down"), std::string::npos) << after[0];
   EXPECT_NE(after[0].find("Exceeded max force"), std::string::npos) << after[0];
 }
+
+TEST(OpenHapticsSystem, RampInAtStartAndAStaleModelFades)
+{
+  StandIn hd;
+  hd.reset();
+  hd.add("Left Device");
+  hd.add("Right Device");
+  OpenHapticsSystem system(twoDevices());
+  // Default safety: half a second of ramp-in. The stand-in's ticks follow
+  // each other within microseconds, so the force is still ramping.
+  HapticServo servo({ HapticSlot{ &system.device(0), PortalSettings{}, false },
+    HapticSlot{ &system.device(1), PortalSettings{}, true } });
+  system.start(servo);
+  hd.tick(1);
+  pushInstrument(servo, 100.0);
+  hd.tick(3);
+  for (int i = 1; i < 4; ++i)
+  {
+    EXPECT_LT(hd.force("Right Device", i).norm(), 0.05) << "tick " << i;
+  }
+  system.stop();
+  // A model published long ago (ten seconds before the servo's clock
+  // started): stale, so nothing reaches the stylus.
+  ForceSafetySettings staleAfterOneTick = immediate();
+  staleAfterOneTick.staleAfter = 0.001;
+  HapticServo stale({ HapticSlot{ &system.device(0), PortalSettings{}, false },
+                      HapticSlot{ &system.device(1), PortalSettings{}, true } },
+    staleAfterOneTick);
+  LocalContactModel& old = stale.contactModelToFill(1);
+  old.time = -10.0;
+  old.count = 0;
+  old.add(LocalContact{ Vector3::Zero(), Vector3::UnitZ(), 1.0, 100.0 });
+  stale.publishContactModel(1);
+  const int before = hd.forceCount("Right Device");
+  system.start(stale);
+  hd.tick(3);
+  for (int i = before; i < before + 3; ++i)
+  {
+    EXPECT_EQ(hd.force("Right Device", i), Vector3::Zero()) << "tick " << i - before;
+  }
+}
