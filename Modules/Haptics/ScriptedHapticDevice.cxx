@@ -62,16 +62,42 @@ HapticSample fromJson(const nlohmann::json& j)
 
 } // namespace
 
-void writeHapticTrajectory(const std::string& path, const HapticTrajectory& trajectory)
+std::string hapticTrajectoryText(const HapticTrajectory& trajectory)
 {
-  checkTrajectory(trajectory, path);
   nlohmann::json samples = nlohmann::json::array();
   for (const HapticSample& s : trajectory.samples)
   {
     samples.push_back(toJson(s));
   }
   const nlohmann::json document = { { "name", trajectory.name }, { "samples", samples } };
-  writeFileAtomically(path, [&](std::ostream& out) { out << document.dump(1) << "\n"; });
+  return document.dump(1);
+}
+
+HapticTrajectory parseHapticTrajectory(const std::string& text, const std::string& source)
+{
+  HapticTrajectory trajectory;
+  try
+  {
+    const nlohmann::json document = nlohmann::json::parse(text);
+    trajectory.name = document.at("name").get<std::string>();
+    for (const auto& sample : document.at("samples"))
+    {
+      trajectory.samples.push_back(fromJson(sample));
+    }
+  }
+  catch (const nlohmann::json::exception& e)
+  {
+    throw InvalidInputError(source + ": not a haptic trajectory (" + e.what() + ")");
+  }
+  checkTrajectory(trajectory, source);
+  return trajectory;
+}
+
+void writeHapticTrajectory(const std::string& path, const HapticTrajectory& trajectory)
+{
+  checkTrajectory(trajectory, path);
+  const std::string text = hapticTrajectoryText(trajectory);
+  writeFileAtomically(path, [&](std::ostream& out) { out << text << "\n"; });
 }
 
 HapticTrajectory readHapticTrajectory(const std::string& path)
@@ -81,22 +107,9 @@ HapticTrajectory readHapticTrajectory(const std::string& path)
   {
     throw FileError(path, "cannot be opened for reading");
   }
-  HapticTrajectory trajectory;
-  try
-  {
-    const nlohmann::json document = nlohmann::json::parse(in);
-    trajectory.name = document.at("name").get<std::string>();
-    for (const auto& sample : document.at("samples"))
-    {
-      trajectory.samples.push_back(fromJson(sample));
-    }
-  }
-  catch (const nlohmann::json::exception& e)
-  {
-    throw InvalidInputError(path + ": not a haptic trajectory (" + e.what() + ")");
-  }
-  checkTrajectory(trajectory, path);
-  return trajectory;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseHapticTrajectory(text.str(), path);
 }
 
 ScriptedHapticDevice::ScriptedHapticDevice(HapticTrajectory trajectory,

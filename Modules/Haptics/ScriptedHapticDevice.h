@@ -41,6 +41,11 @@ struct HapticTrajectory
 THINTISSUEHAPTICS_EXPORT void writeHapticTrajectory(const std::string& path,
   const HapticTrajectory& trajectory);
 THINTISSUEHAPTICS_EXPORT HapticTrajectory readHapticTrajectory(const std::string& path);
+/// The same as text (one JSON object), for files that hold trajectories
+/// among other things; `source` names the text in messages.
+THINTISSUEHAPTICS_EXPORT std::string hapticTrajectoryText(const HapticTrajectory& trajectory);
+THINTISSUEHAPTICS_EXPORT HapticTrajectory parseHapticTrajectory(const std::string& text,
+  const std::string& source);
 
 /// Replays a trajectory: position interpolated linearly and orientation
 /// spherically between samples, buttons of the last sample at or before

@@ -1,0 +1,289 @@
+#include "Scenario.h"
+
+#include "AtomicFileWriter.h"
+#include "ThinTissueError.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace thintissue
+{
+
+namespace
+{
+
+using Json = nlohmann::json;
+
+/// Reads the keys of a scenario, naming the file and the key in every
+/// complaint.
+class ScenarioReader
+{
+public:
+  ScenarioReader(const Json& root, std::string source)
+    : Root(root)
+    , Source(std::move(source))
+  {
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const
+  {
+    throw InvalidInputError("scenario '" + Source + "': key '" + key + "': " + problem);
+  }
+
+  /// The value at a dotted key, or null if absent.
+  const Json* find(const std::string& key) const
+  {
+    const Json* node = &Root;
+    std::istringstream parts(key);
+    std::string part;
+    while (std::getline(parts, part, '.'))
+    {
+      if (!node->is_object() || !node->contains(part))
+      {
+        return nullptr;
+      }
+      node = &(*node)[part];
+    }
+    return node;
+  }
+
+  double number(const std::string& key, double fallback, bool positive = true) const
+  {
+    const Json* value = find(key);
+    if (value == nullptr)
+    {
+      return fallback;
+    }
+    if (!value->is_number() || !std::isfinite(value->get<double>()))
+    {
+      fail(key, "must be a number");
+    }
+    const double x = value->get<double>();
+    if (positive && !(x > 0.0))
+    {
+      fail(key, "must be positive (is " + value->dump() + ")");
+    }
+    return x;
+  }
+
+  std::string text(const std::string& key, const std::string& fallback) const
+  {
+    const Json* value = find(key);
+    if (value == nullptr)
+    {
+      return fallback;
+    }
+    if (!value->is_string())
+    {
+      fail(key, "must be a string");
+    }
+    return value->get<std::string>();
+  }
+
+  bool flag(const std::string& key, bool fallback) const
+  {
+    const Json* value = find(key);
+    if (value == nullptr)
+    {
+      return fallback;
+    }
+    if (!value->is_boolean())
+    {
+      fail(key, "must be true or false");
+    }
+    return value->get<bool>();
+  }
+
+  Vector3 vector(const std::string& key, const Vector3& fallback, bool nonZero = false) const
+  {
+    const Json* value = find(key);
+    if (value == nullptr)
+    {
+      return fallback;
+    }
+    if (!value->is_array() || value->size() != 3 || !(*value)[0].is_number() ||
+        !(*value)[1].is_number() || !(*value)[2].is_number())
+    {
+      fail(key, "must be three numbers [x, y, z]");
+    }
+    const Vector3 v(
+      (*value)[0].get<double>(), (*value)[1].get<double>(), (*value)[2].get<double>());
+    if (!v.allFinite() || (nonZero && v.norm() == 0.0))
+    {
+      fail(key, nonZero ? "must be a finite, non-zero direction" : "must be finite");
+    }
+    return v;
+  }
+
+  template <typename Parse>
+  auto named(const std::string& key, const std::string& fallback, Parse parse) const
+  {
+    const std::string name = text(key, fallback);
+    try
+    {
+      return parse(name);
+    }
+    catch (const InvalidInputError& e)
+    {
+      fail(key, e.what());
+    }
+  }
+
+private:
+  const Json& Root;
+  std::string Source;
+};
+
+void readTissue(const ScenarioReader& r, ScenarioDescription& s)
+{
+  s.tissueModel = r.text("tissue.model", s.tissueModel);
+  if (s.tissueModel != "meniscus")
+  {
+    r.fail("tissue.model", "unknown model '" + s.tissueModel + "' (known: meniscus)");
+  }
+  s.tear = r.named(
+    "tissue.tear", "none", [](const std::string& n) { return meniscusTearTypeFromName(n); });
+  const std::string resolution = r.text("tissue.resolution", "examination");
+  if (resolution != "examination" && resolution != "default")
+  {
+    r.fail("tissue.resolution", "must be \"examination\" or \"default\"");
+  }
+  s.examinationResolution = resolution == "examination";
+  s.wrinkles = r.flag("tissue.wrinkles", s.wrinkles);
+  s.material.youngModulus = r.number("tissue.material.youngModulus", s.material.youngModulus);
+  s.material.poissonRatio = r.number("tissue.material.poissonRatio", s.material.poissonRatio);
+  s.material.density = r.number("tissue.material.density", s.material.density);
+  try
+  {
+    checkMaterial(s.material, "tissue.material");
+  }
+  catch (const InvalidInputError& e)
+  {
+    r.fail("tissue.material", e.what());
+  }
+}
+
+} // namespace
+
+ScenarioDescription parseScenario(const std::string& text, const std::string& source)
+{
+  Json root;
+  try
+  {
+    root = Json::parse(text);
+  }
+  catch (const Json::parse_error& e)
+  {
+    throw InvalidInputError("scenario '" + source + "': not JSON (" + e.what() + ")");
+  }
+  const ScenarioReader r(root, source);
+  if (!root.is_object())
+  {
+    r.fail("(top)", "must be a JSON object");
+  }
+  const Json* version = r.find("version");
+  if (version == nullptr || !version->is_number_integer() || version->get<int>() != ScenarioVersion)
+  {
+    r.fail("version", "must be " + std::to_string(ScenarioVersion));
+  }
+  ScenarioDescription s;
+  s.source = source;
+  s.name = r.text("name", source);
+  s.description = r.text("description", "");
+  readTissue(r, s);
+  s.jointGap = r.number("jointGap", s.jointGap);
+  s.instrument = r.named("instrument.type",
+    "probe_hook",
+    [](const std::string& n) { return parseSurgicalInstrumentType(n); });
+  s.instrumentPortal.portal = r.vector("instrument.portal", s.instrumentPortal.portal);
+  s.instrumentPortal.inward = r.vector("instrument.inward", s.instrumentPortal.inward, true);
+  s.scopePortal.portal = r.vector("arthroscope.portal", s.scopePortal.portal);
+  s.scopePortal.inward = r.vector("arthroscope.inward", s.scopePortal.inward, true);
+  s.viewingAngle = r.number("arthroscope.viewingAngle", s.viewingAngle, false);
+  if (s.viewingAngle < 0.0 || s.viewingAngle > 90.0)
+  {
+    r.fail("arthroscope.viewingAngle", "must be between 0 and 90 degrees");
+  }
+  s.timeStep = r.number("physics.timeStep", s.timeStep);
+  s.task = r.text("task.kind", s.task);
+  s.duration = r.number("task.duration", s.duration);
+  return s;
+}
+
+ScenarioDescription readScenario(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw FileError(path, "cannot be opened for reading");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScenario(text.str(), path);
+}
+
+SceneRecording readSceneRecording(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw FileError(path, "cannot be opened for reading");
+  }
+  Json root;
+  try
+  {
+    root = Json::parse(in);
+  }
+  catch (const Json::parse_error& e)
+  {
+    throw InvalidInputError("recording '" + path + "': not JSON (" + e.what() + ")");
+  }
+  const auto fail = [&](const std::string& key, const std::string& problem)
+  { throw InvalidInputError("recording '" + path + "': key '" + key + "': " + problem); };
+  if (!root.is_object() || !root.contains("version") || root["version"] != 1)
+  {
+    fail("version", "must be 1");
+  }
+  SceneRecording r;
+  if (!root.contains("scenario") || !root["scenario"].is_string())
+  {
+    fail("scenario", "must name the scenario file");
+  }
+  const std::filesystem::path scenario = root["scenario"].get<std::string>();
+  r.scenario =
+    scenario.is_absolute()
+      ? scenario.string()
+      : (std::filesystem::path(path).parent_path() / scenario).lexically_normal().string();
+  if (root.contains("seed") && !root["seed"].is_number_unsigned())
+  {
+    fail("seed", "must be a non-negative integer");
+  }
+  r.seed = root.value("seed", 0u);
+  for (const char* key : { "scope", "instrument" })
+  {
+    if (!root.contains(key) || !root[key].is_object())
+    {
+      fail(key, "must be a trajectory object");
+    }
+  }
+  r.scope = parseHapticTrajectory(root["scope"].dump(), "recording '" + path + "', key 'scope'");
+  r.instrument =
+    parseHapticTrajectory(root["instrument"].dump(), "recording '" + path + "', key 'instrument'");
+  return r;
+}
+
+void writeSceneRecording(const std::string& path, const SceneRecording& recording)
+{
+  const Json root = { { "version", 1 },
+    { "scenario", recording.scenario },
+    { "seed", recording.seed },
+    { "scope", Json::parse(hapticTrajectoryText(recording.scope)) },
+    { "instrument", Json::parse(hapticTrajectoryText(recording.instrument)) } };
+  writeFileAtomically(path, [&](std::ostream& out) { out << root.dump(1) << "\n"; });
+}
+
+} // namespace thintissue

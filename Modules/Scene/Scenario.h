@@ -1,0 +1,76 @@
+// Scenario files (JSON, versioned): what a training run contains -- the
+// tissue (a procedural model by name), its material and wrinkles, the
+// bones, the instrument and its portal, the arthroscope and its portal,
+// the physics step, the task. Validated when read; every message names the
+// file, the key and the problem.
+#ifndef Scenario_h
+#define Scenario_h
+
+#include "HexahedronElement.h"
+#include "MeniscusModel.h"
+#include "ScriptedHapticDevice.h"
+#include "SurgicalInstruments.h"
+#include "ThinTissueSceneModule.h"
+
+#include <string>
+
+namespace thintissue
+{
+
+constexpr int ScenarioVersion = 1;
+
+struct PortalDescription
+{
+  Vector3 portal = Vector3::Zero();
+  Vector3 inward = -Vector3::UnitZ();
+};
+
+struct ScenarioDescription
+{
+  std::string source; ///< the file it came from (for messages)
+  std::string name;
+  std::string description;
+  /// The tissue: "meniscus" (with `tear`, `examinationResolution`).
+  std::string tissueModel = "meniscus";
+  MeniscusTearType tear = MeniscusTearType::None;
+  bool examinationResolution = true;
+  bool wrinkles = true;
+  LinearMaterial material;
+  /// Millimetres between the tibial and femoral cartilage.
+  double jointGap = 10.0;
+  SurgicalInstrumentType instrument = SurgicalInstrumentType::ProbeHook;
+  PortalDescription instrumentPortal;
+  PortalDescription scopePortal;
+  double viewingAngle = 30.0;
+  /// Seconds per physics step.
+  double timeStep = 0.002;
+  /// "examination", ...; the run's length in seconds.
+  std::string task = "examination";
+  double duration = 5.0;
+};
+
+/// Throws InvalidInputError "scenario '<source>': key '<key>': <problem>"
+/// (or FileError for an unreadable file).
+THINTISSUESCENE_EXPORT ScenarioDescription readScenario(const std::string& path);
+THINTISSUESCENE_EXPORT ScenarioDescription parseScenario(const std::string& json,
+  const std::string& source);
+
+/// A recorded run (issue: record and replay): the scenario file (relative
+/// paths are relative to the recording), the seed, and the two styluses'
+/// trajectories. Replayed in lock-step it gives the same meshes bit for bit.
+struct SceneRecording
+{
+  std::string scenario;
+  unsigned seed = 0;
+  HapticTrajectory scope;
+  HapticTrajectory instrument;
+};
+
+/// Throws FileError / InvalidInputError naming the file and the key.
+THINTISSUESCENE_EXPORT SceneRecording readSceneRecording(const std::string& path);
+THINTISSUESCENE_EXPORT void writeSceneRecording(const std::string& path,
+  const SceneRecording& recording);
+
+} // namespace thintissue
+
+#endif

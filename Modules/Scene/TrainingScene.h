@@ -1,0 +1,104 @@
+// The training scene (thesis 6.2, without SOFA's scene graph): one tissue
+// (its three meshes, the FEM, the collision mesh, the wrinkles), the static
+// bones, the instrument (a rigid tool moved by its device through its
+// portal) and the arthroscope, and the one place that orders a physics step:
+//   device poses -> collision -> contact forces -> FEM step -> local contact
+//   model published to the servo -> wrinkles -> visual surface -> metrics.
+//
+// This class runs in lock-step (no threads): step() ticks the servo at 1 ms
+// up to the step's end, then does the rest. With scripted devices a run is
+// deterministic: tests, benchmarks, replays and image baselines use it.
+#ifndef TrainingScene_h
+#define TrainingScene_h
+
+#include "CollisionScene.h"
+#include "HapticServo.h"
+#include "KneeModels.h"
+#include "MeniscusModel.h"
+#include "Scenario.h"
+#include "ThinTissueSceneModule.h"
+#include "WrinkleGenerator.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace thintissue
+{
+
+/// What a run measured (issue: metrics and assessment).
+struct SceneMetrics
+{
+  double time = 0.0;                 ///< s
+  double instrumentPathLength = 0.0; ///< mm, of the instrument tip
+  double cameraPathLength = 0.0;     ///< mm, of the arthroscope tip
+  int cartilageContactSteps = 0;     ///< steps the instrument touched cartilage
+  double peakForce = 0.0;            ///< N, on the instrument
+  int wrinklingSteps = 0;
+  int steps = 0;
+};
+
+class THINTISSUESCENE_EXPORT TrainingScene
+{
+public:
+  /// Builds the scenario's tissue, bones, instrument and arthroscope; the
+  /// devices (not owned) drive the arthroscope and the instrument. Throws
+  /// InvalidInputError naming the scenario on what it cannot build.
+  TrainingScene(const ScenarioDescription& scenario, HapticDevice& scope, HapticDevice& instrument);
+  ~TrainingScene();
+  TrainingScene(const TrainingScene&) = delete;
+  TrainingScene& operator=(const TrainingScene&) = delete;
+
+  /// One physics step of scenario().timeStep seconds. Returns false if the
+  /// solver failed (the scene keeps its last good state; see lastError()).
+  bool step();
+  /// Steps until time() reaches `seconds`.
+  bool runTo(double seconds);
+
+  double time() const { return Metrics.time; }
+  const ScenarioDescription& scenario() const { return Scenario; }
+  const SceneMetrics& metrics() const { return Metrics; }
+  /// The metrics as a JSON object (text).
+  std::string metricsJson() const;
+  const std::string& lastError() const { return LastError; }
+
+  /// The tissue: its model (rest meshes), the visual surface now (wrinkles
+  /// included), whether it wrinkles.
+  const TissueModel& tissue() const { return Meniscus; }
+  const std::vector<Vector3>& visualPositions() const { return Visual; }
+  bool wrinkling() const { return Wrinkles && Wrinkles->wrinkling(); }
+  const KneeSurroundings& knee() const { return Knee; }
+  const SurgicalInstrumentModel& instrumentModel() const { return Instrument; }
+  const RigidPose& instrumentPose() const { return Tool.pose(); }
+  const RigidPose& scopePose() const { return ScopePose; }
+  HapticServo& servo() { return *Servo; }
+
+private:
+  void buildTissue();
+  void buildContacts();
+  void updateMetrics(const RigidPose& previousTool, const RigidPose& previousScope);
+
+  ScenarioDescription Scenario;
+  MeniscusModel Meniscus;
+  KneeSurroundings Knee;
+  SurgicalInstrumentModel Instrument;
+  std::unique_ptr<CorotationalHexFem> Fem;
+  std::unique_ptr<DeformableCollisionMesh> Collision;
+  std::unique_ptr<StaticObstacle> Tibia;
+  std::unique_ptr<StaticObstacle> Cartilage;
+  RigidTool Tool;
+  CollisionScene Contacts;
+  std::unique_ptr<HapticServo> Servo;
+  std::unique_ptr<WrinkleGenerator> Wrinkles;
+  HexahedralEmbedding VisualEmbedding;
+  std::vector<Vector3> Visual;
+  RigidPose ScopePose;
+  double ServoTime = 0.0;
+  int CartilageObstacle = -1;
+  SceneMetrics Metrics;
+  std::string LastError;
+};
+
+} // namespace thintissue
+
+#endif

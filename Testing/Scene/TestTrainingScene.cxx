@@ -1,0 +1,114 @@
+// The training scene in lock-step: the shipped meniscus examination replayed
+// from its recording (the hook presses the inner border onto the plateau and
+// lets go: wrinkles), deterministic bit for bit, with metrics; scenario and
+// recording files validated with the file and the key named.
+#include "ScriptedHapticDevice.h"
+#include "ThinTissueError.h"
+#include "ThinTissueTestSupport.h"
+#include "TrainingScene.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace thintissue;
+
+namespace
+{
+
+const std::string Data = THINTISSUE_SOURCE_DATA;
+
+struct Replay
+{
+  SceneRecording recording = readSceneRecording(Data + "/Recordings/meniscus-examination.json");
+  ScenarioDescription scenario = readScenario(recording.scenario);
+  ScriptedHapticDevice scope{ recording.scope };
+  ScriptedHapticDevice instrument{ recording.instrument };
+  TrainingScene scene{ scenario, scope, instrument };
+};
+
+std::string messageOf(const std::string& json)
+{
+  try
+  {
+    parseScenario(json, "bad.json");
+  }
+  catch (const InvalidInputError& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+} // namespace
+
+TEST(TrainingScene, TheShippedExaminationPressesAndWrinklesTheMeniscus)
+{
+  Replay run;
+  EXPECT_EQ(run.scenario.name, "Meniscus examination");
+  ASSERT_TRUE(run.scene.runTo(run.scenario.duration)) << run.scene.lastError();
+  const SceneMetrics& m = run.scene.metrics();
+  EXPECT_NEAR(m.time, run.scenario.duration, 1e-9);
+  EXPECT_GT(m.instrumentPathLength, 10.0);
+  EXPECT_GT(m.cameraPathLength, 0.5);
+  EXPECT_GT(m.peakForce, 0.0);
+  EXPECT_GT(m.wrinklingSteps, 0);
+  EXPECT_EQ(run.scene.visualPositions().size(), run.scene.tissue().visual.vertexCount());
+  std::cout << run.scene.metricsJson() << "\n";
+}
+
+TEST(TrainingScene, ReplaysAreBitForBit)
+{
+  Replay a, b;
+  for (const double t : { 1.0, 2.6, 3.0 })
+  {
+    ASSERT_TRUE(a.scene.runTo(t));
+    ASSERT_TRUE(b.scene.runTo(t));
+    EXPECT_EQ(a.scene.visualPositions(), b.scene.visualPositions()) << "at " << t << " s";
+    EXPECT_EQ(a.scene.instrumentPose().translation, b.scene.instrumentPose().translation);
+  }
+  // A recording written and read back replays the same.
+  const std::string path = (thintissue::testing::temporaryDirectory() / "replay.json").string();
+  SceneRecording copy = a.recording;
+  copy.scenario = Data + "/Scenarios/meniscus-examination.json";
+  writeSceneRecording(path, copy);
+  const SceneRecording back = readSceneRecording(path);
+  ASSERT_EQ(back.instrument.samples.size(), a.recording.instrument.samples.size());
+  for (std::size_t k = 0; k < back.instrument.samples.size(); ++k)
+  {
+    EXPECT_TRUE(back.instrument.samples[k] == a.recording.instrument.samples[k]) << k;
+  }
+}
+
+TEST(TrainingScene, BadScenariosNameTheFileAndTheKey)
+{
+  const std::string good =
+    R"({"version": 1, "tissue": {"model": "meniscus", "material": {"youngModulus": 150}}})";
+  EXPECT_EQ(messageOf(good), "");
+  EXPECT_NE(messageOf(R"({"version": 2})").find("key 'version'"), std::string::npos);
+  const std::string negative =
+    messageOf(R"({"version": 1, "tissue": {"material": {"youngModulus": -3}}})");
+  EXPECT_NE(
+    negative.find("scenario 'bad.json': key 'tissue.material.youngModulus'"), std::string::npos)
+    << negative;
+  const std::string tear = messageOf(R"({"version": 1, "tissue": {"tear": "zigzag"}})");
+  EXPECT_NE(tear.find("key 'tissue.tear'"), std::string::npos) << tear;
+  const std::string tool = messageOf(R"({"version": 1, "instrument": {"type": "spoon"}})");
+  EXPECT_NE(tool.find("key 'instrument.type'"), std::string::npos) << tool;
+  const std::string inward = messageOf(R"({"version": 1, "arthroscope": {"inward": [0, 0, 0]}})");
+  EXPECT_NE(inward.find("key 'arthroscope.inward'"), std::string::npos) << inward;
+  EXPECT_NE(messageOf("{not json").find("not JSON"), std::string::npos);
+  EXPECT_THROW(readScenario(Data + "/Scenarios/no-such-scenario.json"), FileError);
+  const std::string path =
+    (thintissue::testing::temporaryDirectory() / "bad-recording.json").string();
+  std::ofstream(path) << R"({"version": 1, "scenario": "x.json", "scope": {}, "instrument": {}})";
+  try
+  {
+    readSceneRecording(path);
+    FAIL();
+  }
+  catch (const InvalidInputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("key 'scope'"), std::string::npos) << e.what();
+  }
+}
