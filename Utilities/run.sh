@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# README command 1: set up, build, and run the main job. Arguments go to the
-# program (e.g. a mesh file). Without a display it renders offscreen under
-# Xvfb and writes build/thintissue-demo.png and its timings.
+# README command 1: set up, build, and run the main job: the training
+# simulator on the meniscus examination. Arguments go to the simulator.
+# Without a display it replays offscreen under Xvfb and writes the pictures,
+# metrics.json and timings.json into build/simulator/.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 cd "$THINTISSUE_BUILD"
-# Without a display the demo re-runs itself under xvfb-run, offscreen.
 if [ -z "${DISPLAY:-}" ]; then
-  exec "$THINTISSUE_BUILD/bin/ThinTissueDemo" --screenshot "$THINTISSUE_BUILD/thintissue-demo.png" "$@"
+  exec "$THINTISSUE_BUILD/bin/ThinTissueSimulator" --snapshots 1.0,2.5,2.65 \
+    --output "$THINTISSUE_BUILD/simulator" "$@"
 fi
-exec "$THINTISSUE_BUILD/bin/ThinTissueDemo" "$@"
+exec "$THINTISSUE_BUILD/bin/ThinTissueSimulator" "$@"

@@ -155,7 +155,14 @@ void readTissue(const ScenarioReader& r, ScenarioDescription& s)
   s.examinationResolution = resolution == "examination";
   s.wrinkles = r.flag("tissue.wrinkles", s.wrinkles);
   s.material.youngModulus = r.number("tissue.material.youngModulus", s.material.youngModulus);
-  s.material.poissonRatio = r.number("tissue.material.poissonRatio", s.material.poissonRatio);
+  s.material.poissonRatio =
+    r.number("tissue.material.poissonRatio", s.material.poissonRatio, false);
+  if (!(s.material.poissonRatio > -1.0 && s.material.poissonRatio < 0.5))
+  {
+    r.fail("tissue.material.poissonRatio",
+      "must lie in (-1, 0.5) (0.5 is incompressible, which the FEM cannot take); is " +
+        std::to_string(s.material.poissonRatio));
+  }
   s.material.density = r.number("tissue.material.density", s.material.density);
   try
   {

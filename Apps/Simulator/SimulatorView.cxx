@@ -1,0 +1,198 @@
+#include "SimulatorView.h"
+
+#include "MouseHapticDevice.h"
+#include "vtkThinTissueConversion.h"
+
+#include <vtkActor2D.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCoordinate.h>
+#include <vtkDoubleArray.h>
+#include <vtkMatrix4x4.h>
+#include <vtkPNGWriter.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkPolyDataMapper2D.h>
+#include <vtkProperty.h>
+#include <vtkProperty2D.h>
+#include <vtkRenderWindow.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <cmath>
+
+namespace thintissue
+{
+
+namespace
+{
+
+/// A lit surface; `wet`: a tight bright highlight (synovial fluid).
+vtkSmartPointer<vtkActor> surfaceActor(vtkPolyData* surface,
+  const std::array<double, 3>& colour,
+  bool wet)
+{
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(surface);
+  mapper->ScalarVisibilityOff();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  vtkProperty* p = actor->GetProperty();
+  p->SetColor(colour[0], colour[1], colour[2]);
+  p->SetInterpolationToPhong();
+  p->SetSpecular(wet ? 0.7 : 0.2);
+  p->SetSpecularPower(wet ? 60.0 : 15.0);
+  p->SetDiffuse(0.8);
+  p->SetAmbient(0.08);
+  return actor;
+}
+
+vtkSmartPointer<vtkPolyData> withNormals(const TriangleMesh& mesh)
+{
+  TriangleMesh copy = mesh;
+  copy.textureCoordinates.clear();
+  copy.textureCorners.clear();
+  copy.pointAttributes = VertexAttributes();
+  copy.computeVertexNormals();
+  return toPolyData(copy);
+}
+
+} // namespace
+
+SimulatorView::SimulatorView(const TrainingScene& scene)
+  : Scene(scene)
+  , Renderer(vtkSmartPointer<vtkRenderer>::New())
+{
+  // Synovial red-brown beyond the lit tissue.
+  Renderer->SetBackground(0.12, 0.03, 0.02);
+  addKnee();
+  Tissue = withNormals(scene.tissue().visual);
+  Renderer->AddActor(surfaceActor(Tissue, { 0.96, 0.93, 0.88 }, true));
+  Instrument =
+    surfaceActor(withNormals(scene.instrumentModel().visual), { 0.78, 0.80, 0.84 }, false);
+  Instrument->GetProperty()->SetSpecular(0.9);
+  Instrument->GetProperty()->SetSpecularPower(80.0);
+  Renderer->AddActor(Instrument);
+  addRoundFieldOfView();
+  update();
+}
+
+void SimulatorView::addKnee()
+{
+  const KneeSurroundings& knee = Scene.knee();
+  Renderer->AddActor(surfaceActor(withNormals(knee.tibia.visual), { 0.90, 0.82, 0.60 }, false));
+  Renderer->AddActor(surfaceActor(withNormals(knee.femur.visual), { 0.90, 0.82, 0.60 }, false));
+  Renderer->AddActor(
+    surfaceActor(withNormals(knee.tibialCartilage.visual), { 0.82, 0.86, 0.92 }, true));
+  Renderer->AddActor(
+    surfaceActor(withNormals(knee.anteriorCruciateLigament.visual), { 0.88, 0.62, 0.58 }, true));
+  Renderer->AddActor(
+    surfaceActor(withNormals(knee.posteriorCruciateLigament.visual), { 0.84, 0.58, 0.56 }, true));
+}
+
+void SimulatorView::addRoundFieldOfView()
+{
+  // A black ring from the circle of the scope's image to the window's edge,
+  // in normalized viewport coordinates; placeRing() keeps it round.
+  vtkNew<vtkCellArray> quads;
+  for (int k = 0; k < RingSegments; ++k)
+  {
+    const vtkIdType i = 2 * k, j = 2 * ((k + 1) % RingSegments);
+    const vtkIdType quad[4] = { i, j, j + 1, i + 1 };
+    quads->InsertNextCell(4, quad);
+  }
+  Ring = vtkSmartPointer<vtkPolyData>::New();
+  Ring->SetPoints(vtkSmartPointer<vtkPoints>::New());
+  Ring->SetPolys(quads);
+  placeRing(1.0);
+  vtkNew<vtkCoordinate> normalized;
+  normalized->SetCoordinateSystemToNormalizedViewport();
+  vtkNew<vtkPolyDataMapper2D> mapper;
+  mapper->SetInputData(Ring);
+  mapper->SetTransformCoordinate(normalized);
+  vtkNew<vtkActor2D> mask;
+  mask->SetMapper(mapper);
+  mask->GetProperty()->SetColor(0.0, 0.0, 0.0);
+  Renderer->AddActor2D(mask);
+}
+
+void SimulatorView::placeRing(double aspect)
+{
+  // Radius 0.47 of the height; x scaled by height / width.
+  vtkPoints* points = Ring->GetPoints();
+  points->SetNumberOfPoints(2 * RingSegments);
+  const double sx = 1.0 / aspect;
+  for (int k = 0; k < RingSegments; ++k)
+  {
+    const double a = 2.0 * M_PI * k / RingSegments;
+    points->SetPoint(2 * k, 0.5 + 0.47 * sx * std::cos(a), 0.5 + 0.47 * std::sin(a), 0.0);
+    points->SetPoint(2 * k + 1, 0.5 + 2.0 * std::cos(a), 0.5 + 2.0 * std::sin(a), 0.0);
+  }
+  points->Modified();
+  RingAspect = aspect;
+}
+
+void SimulatorView::update()
+{
+  if (Renderer->GetRenderWindow() != nullptr)
+  {
+    const int* size = Renderer->GetSize();
+    const double aspect = size[1] > 0 ? static_cast<double>(size[0]) / size[1] : 1.0;
+    if (std::abs(aspect - RingAspect) > 1e-6)
+    {
+      placeRing(aspect);
+    }
+  }
+  // The tissue where the scene put it (with its wrinkles), normals again.
+  TriangleMesh moved = Scene.tissue().visual;
+  moved.positions = Scene.visualPositions();
+  moved.computeVertexNormals();
+  vtkPoints* points = Tissue->GetPoints();
+  vtkDataArray* normals = Tissue->GetPointData()->GetNormals();
+  for (std::size_t i = 0; i < moved.positions.size(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), moved.positions[i].data());
+    if (normals)
+    {
+      normals->SetTuple(static_cast<vtkIdType>(i), moved.normals[i].data());
+    }
+  }
+  points->Modified();
+  if (normals)
+  {
+    normals->Modified();
+  }
+  Tissue->Modified();
+  const RigidPose& tool = Scene.instrumentPose();
+  vtkNew<vtkMatrix4x4> matrix;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      matrix->SetElement(r, c, tool.rotation(r, c));
+    }
+    matrix->SetElement(r, 3, tool.translation[r]);
+  }
+  Instrument->SetUserMatrix(matrix);
+  // The arthroscope: eye at the scope tip, VTK's headlight there too.
+  const ArthroscopeView view = arthroscopeView(Scene.scopePose(), Scene.scenario().viewingAngle);
+  vtkCamera* camera = Renderer->GetActiveCamera();
+  camera->SetPosition(view.eye.data());
+  camera->SetFocalPoint(view.focalPoint.data());
+  camera->SetViewUp(view.viewUp.data());
+  camera->SetViewAngle(70.0);
+  camera->SetClippingRange(0.5, 300.0);
+}
+
+void SimulatorView::writePicture(vtkRenderWindow* window, const std::string& path)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->Write();
+}
+
+} // namespace thintissue

@@ -1,0 +1,49 @@
+// What the simulator draws of a TrainingScene: the knee (bones, cartilage,
+// ligaments), the tissue's visual surface as the scene moves it (wrinkles
+// included), the instrument, and the arthroscope's view (30 degree scope,
+// round field of view, headlight at the scope tip). Only the GUI thread
+// touches it.
+#ifndef SimulatorView_h
+#define SimulatorView_h
+
+#include "TrainingScene.h"
+
+#include <vtkActor.h>
+#include <vtkPolyData.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+
+#include <string>
+
+class vtkRenderWindow;
+
+namespace thintissue
+{
+
+class SimulatorView
+{
+public:
+  explicit SimulatorView(const TrainingScene& scene);
+  vtkRenderer* renderer() const { return Renderer; }
+  /// Follows the scene: tissue points and normals, instrument, camera.
+  void update();
+  /// Writes the window's picture (PNG).
+  static void writePicture(vtkRenderWindow* window, const std::string& path);
+
+private:
+  void addKnee();
+  void addRoundFieldOfView();
+  void placeRing(double aspect);
+  static constexpr int RingSegments = 96;
+
+  const TrainingScene& Scene;
+  vtkSmartPointer<vtkRenderer> Renderer;
+  vtkSmartPointer<vtkPolyData> Tissue;
+  vtkSmartPointer<vtkActor> Instrument;
+  vtkSmartPointer<vtkPolyData> Ring;
+  double RingAspect = 0.0;
+};
+
+} // namespace thintissue
+
+#endif

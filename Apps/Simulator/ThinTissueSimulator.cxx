@@ -1,0 +1,284 @@
+// ThinTissueSimulator: the training simulator (issue 17). A scenario file
+// and a recording of the two styluses (the arthroscope's and the
+// instrument's) drive the training scene in lock-step; in a window when
+// there is a display, otherwise offscreen, writing the arthroscope's
+// picture at the asked times, the metrics and the timings.
+//
+//   ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]
+//                       [--snapshots T1,T2,...] [--output DIR]
+//                       [--compare DIR] [--size WxH]
+//
+// Defaults: the shipped meniscus examination and its recording; without a
+// display the program re-runs itself under xvfb-run, offscreen.
+#include "SimulatorView.h"
+#include "SimulatorWindow.h"
+
+#include "ScriptedHapticDevice.h"
+#include "ThinTissueError.h"
+#include "TrainingScene.h"
+
+#include <QApplication>
+#include <QSurfaceFormat>
+#include <QVTKOpenGLNativeWidget.h>
+
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+#include <vtkTesting.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace
+{
+
+using namespace thintissue;
+
+struct Options
+{
+  std::string scenario;
+  std::string replay = std::string(THINTISSUE_DATA_DIR) + "/Recordings/meniscus-examination.json";
+  bool offscreen = false;
+  std::vector<double> snapshots;
+  std::string output = "simulator-output";
+  std::string compare;
+  int width = 640;
+  int height = 480;
+};
+
+void printUsage()
+{
+  std::cerr << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
+               "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
+               "                           [--size WxH]\n";
+}
+
+bool parseTimes(const std::string& text, std::vector<double>& times)
+{
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+  {
+    char* end = nullptr;
+    const double t = std::strtod(item.c_str(), &end);
+    if (end == item.c_str() || *end != '\0' || !(t >= 0.0))
+    {
+      return false;
+    }
+    times.push_back(t);
+  }
+  std::sort(times.begin(), times.end());
+  return !times.empty();
+}
+
+bool parseArguments(int argc, char* argv[], Options& o)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (a == "--offscreen")
+    {
+      o.offscreen = true;
+    }
+    else if (a == "--scenario" && hasValue)
+    {
+      o.scenario = argv[++i];
+    }
+    else if (a == "--replay" && hasValue)
+    {
+      o.replay = argv[++i];
+    }
+    else if (a == "--snapshots" && hasValue && parseTimes(argv[++i], o.snapshots))
+    {
+    }
+    else if (a == "--output" && hasValue)
+    {
+      o.output = argv[++i];
+    }
+    else if (a == "--compare" && hasValue)
+    {
+      o.compare = argv[++i];
+    }
+    else if (a == "--size" && hasValue &&
+             std::sscanf(argv[++i], "%dx%d", &o.width, &o.height) == 2 && o.width > 0 &&
+             o.height > 0)
+    {
+    }
+    else
+    {
+      std::cerr << "ThinTissueSimulator: bad argument '" << a << "'\n";
+      printUsage();
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Re-runs the program under xvfb-run (offscreen) when there is no display.
+void reexecuteUnderVirtualDisplay(int argc, char* argv[])
+{
+  if (std::getenv("THINTISSUE_UNDER_XVFB") != nullptr)
+  {
+    return;
+  }
+  setenv("THINTISSUE_UNDER_XVFB", "1", 1);
+  std::vector<std::string> words = { "xvfb-run", "-a", "-s", "-screen 0 1280x1024x24" };
+  for (int i = 0; i < argc; ++i)
+  {
+    words.emplace_back(argv[i]);
+  }
+  words.emplace_back("--offscreen");
+  std::vector<char*> arguments;
+  for (std::string& w : words)
+  {
+    arguments.push_back(w.data());
+  }
+  arguments.push_back(nullptr);
+  execvp(arguments[0], arguments.data());
+}
+
+std::string snapshotName(const std::string& scenario, double t)
+{
+  std::ostringstream name;
+  name << std::filesystem::path(scenario).stem().string() << "-" << std::fixed;
+  name.precision(2);
+  name << t << "s.png";
+  return name.str();
+}
+
+double percentile(std::vector<double> values, double fraction)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  std::sort(values.begin(), values.end());
+  return values[std::min(values.size() - 1, static_cast<std::size_t>(fraction * values.size()))];
+}
+
+/// Compares the window with DIR/name; false (and the picture kept in the
+/// output) when it differs.
+bool compareWithBaseline(vtkRenderWindow* window, const Options& o, const std::string& name)
+{
+  vtkNew<vtkTesting> testing;
+  testing->AddArgument("-T");
+  testing->AddArgument(o.output.c_str());
+  testing->AddArgument("-V");
+  testing->AddArgument((std::filesystem::path(o.compare) / name).string().c_str());
+  testing->SetRenderWindow(window);
+  return testing->RegressionTest(0.15) == vtkTesting::PASSED;
+}
+
+int runOffscreen(TrainingScene& scene, const Options& o)
+{
+  std::filesystem::create_directories(o.output);
+  SimulatorView view(scene);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(o.width, o.height);
+  window->AddRenderer(view.renderer());
+  std::vector<double> steps, frames;
+  bool matches = true;
+  std::vector<double> times = o.snapshots;
+  times.push_back(scene.scenario().duration);
+  for (std::size_t k = 0; k < times.size(); ++k)
+  {
+    while (scene.time() + 0.5 * scene.scenario().timeStep < times[k])
+    {
+      const auto start = std::chrono::steady_clock::now();
+      if (!scene.step())
+      {
+        std::cerr << "ThinTissueSimulator: " << scene.lastError() << "\n";
+        return 1;
+      }
+      steps.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    if (k + 1 == times.size())
+    {
+      break; // the end of the run: metrics only
+    }
+    const auto start = std::chrono::steady_clock::now();
+    view.update();
+    window->Render();
+    frames.push_back(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    const std::string name = snapshotName(scene.scenario().source, times[k]);
+    SimulatorView::writePicture(window, (std::filesystem::path(o.output) / name).string());
+    std::cout << "picture at " << times[k]
+              << " s: " << (std::filesystem::path(o.output) / name).string() << "\n";
+    if (!o.compare.empty() && !compareWithBaseline(window, o, name))
+    {
+      std::cerr << "ThinTissueSimulator: " << name << " differs from the baseline in " << o.compare
+                << "\n";
+      matches = false;
+    }
+  }
+  std::ofstream(std::filesystem::path(o.output) / "metrics.json") << scene.metricsJson() << "\n";
+  const nlohmann::ordered_json timings = { { "scenario", scene.scenario().name },
+    { "physics_steps", steps.size() },
+    { "physics_step_median_ms", percentile(steps, 0.5) * 1e3 },
+    { "physics_step_p99_ms", percentile(steps, 0.99) * 1e3 },
+    { "frame_median_ms", percentile(frames, 0.5) * 1e3 } };
+  std::ofstream(std::filesystem::path(o.output) / "timings.json") << timings.dump(2) << "\n";
+  std::cout << scene.metricsJson() << "\n"
+            << timings.dump(2) << "\n"
+            << "metrics and timings written to " << o.output << "\n";
+  return matches ? 0 : 1;
+}
+
+int runWindow(TrainingScene& scene, int argc, char* argv[])
+{
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication application(argc, argv);
+  SimulatorWindow window(scene, "scripted (recording)");
+  window.show();
+  return application.exec();
+}
+
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  if (!parseArguments(argc, argv, options))
+  {
+    return 2;
+  }
+  const char* display = std::getenv("DISPLAY");
+  if (display == nullptr || display[0] == '\0')
+  {
+    reexecuteUnderVirtualDisplay(argc, argv);
+    std::cerr << "ThinTissueSimulator: no X display and no working xvfb-run; install xvfb or run "
+                 "with DISPLAY set\n";
+    return 3;
+  }
+  try
+  {
+    const SceneRecording recording = readSceneRecording(options.replay);
+    const ScenarioDescription scenario =
+      readScenario(options.scenario.empty() ? recording.scenario : options.scenario);
+    ScriptedHapticDevice scope(recording.scope);
+    ScriptedHapticDevice instrument(recording.instrument);
+    TrainingScene scene(scenario, scope, instrument);
+    std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << ")\n";
+    return options.offscreen ? runOffscreen(scene, options) : runWindow(scene, argc, argv);
+  }
+  catch (const Error& error)
+  {
+    std::cerr << "ThinTissueSimulator: " << error.what() << "\n";
+    return 1;
+  }
+}
