@@ -290,6 +290,16 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
       m.row(k) = childCorners[k].transpose();
     inverses.push_back(m.inverse());
   }
+  // Per local vertex: whether formula 5-2 rebinds it (bound to the parent,
+  // off the traced cuts); rebindPiece clears it once done.
+  const int parent = split.parent;
+  auto& rebindable = buffers.rebindable;
+  rebindable.resize(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const VisualVertexBinding& b = Bindings[region.vertices[i]];
+    rebindable[i] = b.kind == BindingKind::CollisionTriangle && b.element == parent && !onCut[i];
+  }
   for (std::size_t p = 0; p < pieces; ++p)
   {
     const int size = pieceStart[p + 1] - pieceStart[p];
@@ -298,7 +308,6 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
       members.data() + pieceStart[p],
       size,
       region.newLocalTriangles,
-      onCut,
       split.children[c],
       inverses[c],
       context);
@@ -311,12 +320,11 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
   const int* members,
   int memberCount,
   const std::vector<Triangle>& corners,
-  const std::vector<char>& onCut,
   int child,
   const Eigen::Matrix3d& inverse,
   CutContext& context)
 {
-  const int parent = context.cut->splits[region.split].parent;
+  std::vector<char>& rebindable = Buffers.rebindable;
   const int side = region.side > 0 ? 1 : -1;
   Eigen::Matrix2d frameMatrix;
   frameMatrix.col(0) = region.frame[1] - region.frame[0];
@@ -334,10 +342,12 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
     childRegion.push_back(t);
     for (int local : corners[m])
     {
+      // Each vertex bound to the parent, off the cuts, once (marked).
+      if (!rebindable[local])
+        continue;
+      rebindable[local] = 0;
       const int v = region.vertices[local];
       VisualVertexBinding& b = Bindings[v];
-      if (b.kind != BindingKind::CollisionTriangle || b.element != parent || onCut[local])
-        continue;
       // The parent parameters of where the vertex lies in the plane it
       // was cut in (its binding's own, unless a fold was repaired there).
       const Vector2 bc = frameInverse * (region.planar[local] - region.frame[0]);

@@ -197,6 +197,8 @@ private:
     std::vector<Vector2> centroids;
     std::vector<int> triangleIn;
     std::vector<int> members;
+    /// rebindPieces: per local vertex, whether formula 5-2 rebinds it.
+    std::vector<char> rebindable;
     /// remeshRegions: per texture coordinate, its local index (all -1
     /// between uses).
     std::vector<int> localTexture;
@@ -242,7 +244,6 @@ private:
     const int* members,
     int memberCount,
     const std::vector<Triangle>& corners,
-    const std::vector<char>& onCut,
     int child,
     const Eigen::Matrix3d& inverse,
     CutContext& context);
