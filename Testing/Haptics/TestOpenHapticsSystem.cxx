@@ -216,10 +216,13 @@ TEST(OpenHapticsSystem, RampInAtStartAndAStaleModelFades)
   hd.add("Left Device");
   hd.add("Right Device");
   OpenHapticsSystem system(twoDevices());
-  // Default safety: half a second of ramp-in. The stand-in's ticks follow
-  // each other within microseconds, so the force is still ramping.
+  // A minute of ramp-in: whatever the machine's speed, the first ticks (well
+  // within a second of the start) send a small fraction of the force.
+  ForceSafetySettings slowRamp;
+  slowRamp.rampIn = 60.0;
   HapticServo servo({ HapticSlot{ &system.device(0), PortalSettings{}, false },
-    HapticSlot{ &system.device(1), PortalSettings{}, true } });
+                      HapticSlot{ &system.device(1), PortalSettings{}, true } },
+    slowRamp);
   system.start(servo);
   hd.tick(1);
   pushInstrument(servo, 100.0);
