@@ -129,8 +129,8 @@ std::vector<double> equalArcParameters(const Spline3& spline, int table, int pie
     const double target = arc.back() * p / pieces;
     const auto above = std::lower_bound(arc.begin(), arc.end(), target);
     // (The last target may exceed the total by rounding: stay in the table.)
-    const std::size_t i = std::clamp<std::size_t>(
-      static_cast<std::size_t>(above - arc.begin()), 1, arc.size() - 1);
+    const std::size_t i =
+      std::clamp<std::size_t>(static_cast<std::size_t>(above - arc.begin()), 1, arc.size() - 1);
     const double span = arc[i] - arc[i - 1];
     const double t = span > 0.0 ? (target - arc[i - 1]) / span : 0.0;
     u[p] = std::clamp((static_cast<double>(i - 1) + t) / table, 0.0, 1.0);
