@@ -1146,29 +1146,8 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
 
   // New vertices, their attributes and texture coordinates.
   std::vector<int> global(local.globalVertex);
-  const std::vector<std::string> names = Mesh.pointAttributes.names();
-  for (int i = localCount; i < static_cast<int>(out.vertexCount()); ++i)
-  {
-    const int v = static_cast<int>(Mesh.positions.size());
-    global.push_back(v);
-    context.newVertices.push_back(v);
-    Mesh.positions.push_back(out.positions[i]);
-    if (Mesh.hasNormals())
-      Mesh.normals.push_back(out.normals[i]);
-    for (const std::string& name : names)
-    {
-      const AttributeArray& from = out.pointAttributes.get(name);
-      AttributeArray& into = Mesh.pointAttributes.get(name);
-      into.values.insert(into.values.end(), from.element(i), from.element(i) + from.components);
-    }
-    Bindings.emplace_back();
-  }
   std::vector<int> globalTexture(local.globalTexture);
-  for (std::size_t c = local.globalTexture.size(); c < out.textureCoordinates.size(); ++c)
-  {
-    globalTexture.push_back(static_cast<int>(Mesh.textureCoordinates.size()));
-    Mesh.textureCoordinates.push_back(out.textureCoordinates[c]);
-  }
+  appendInserted(out, global, globalTexture, context);
 
   // Parameters of every vertex in its region's parent (inserted vertices
   // interpolated along the edge they were inserted in), then the triangles,
@@ -1190,53 +1169,7 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
     region.planar.reserve(room);
     context.activate(region);
     for (int j : outputOf[r])
-    {
-      const Triangle& corners = out.triangles[j];
-      const Triangle mapped{ { global[corners[0]], global[corners[1]], global[corners[2]] } };
-      for (int k = 0; k < 3; ++k)
-      {
-        if (context.local(mapped[k]) >= 0)
-          continue;
-        const auto misplaced = [&]
-        {
-          return Error("visual cut of '" + Mesh.name + "': re-meshing put visual vertex " +
-                       std::to_string(mapped[k]) + " in a region it does not belong to");
-        };
-        if (corners[k] < localCount)
-          throw misplaced();
-        const SurfacePoint& on = remeshed.insertedOn[corners[k] - localCount];
-        const int a = context.local(global[on.edgeStart]);
-        const int b = context.local(global[on.edgeEnd]);
-        if (a < 0 || b < 0)
-          throw misplaced();
-        const double u = on.edgeParameter;
-        context.addToActive(region,
-          mapped[k],
-          (1.0 - u) * region.parameters[a] + u * region.parameters[b],
-          (1.0 - u) * region.planar[a] + u * region.planar[b]);
-      }
-      int t = -1;
-      if (static_cast<std::size_t>(j) < local.globalTriangle.size())
-      {
-        t = local.globalTriangle[j];
-        Mesh.triangles[t] = mapped;
-      }
-      else
-      {
-        t = addTriangle(mapped, -1, 0, VisualMaterial::Surface);
-      }
-      if (Mesh.hasTextureCoordinates())
-      {
-        const Triangle& tex = out.textureCorners[j];
-        Mesh.textureCorners[t] = {
-          { globalTexture[tex[0]], globalTexture[tex[1]], globalTexture[tex[2]] }
-        };
-      }
-      region.newTriangles.push_back(t);
-      region.newLocalTriangles.push_back(
-        { { context.local(mapped[0]), context.local(mapped[1]), context.local(mapped[2]) } });
-      context.changedTriangles.push_back(t);
-    }
+      spliceTriangle(region, remeshed, j, global, globalTexture, local.globalTriangle, context);
     context.deactivate(region);
   }
   // The traced paths as visual vertices.
@@ -1250,6 +1183,100 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
         crossing.vertices.push_back(global[i]);
     }
   }
+}
+
+// The vertices and texture coordinates the re-meshing inserted (after the
+// local mesh's own), appended to the visual mesh; `global` and
+// `globalTexture` (local index -> visual mesh) grow by them.
+void CuttableVisualMesh::appendInserted(const TriangleMesh& out,
+  std::vector<int>& global,
+  std::vector<int>& globalTexture,
+  CutContext& context)
+{
+  const std::vector<std::string> names = Mesh.pointAttributes.names();
+  for (int i = static_cast<int>(global.size()); i < static_cast<int>(out.vertexCount()); ++i)
+  {
+    const int v = static_cast<int>(Mesh.positions.size());
+    global.push_back(v);
+    context.newVertices.push_back(v);
+    Mesh.positions.push_back(out.positions[i]);
+    if (Mesh.hasNormals())
+      Mesh.normals.push_back(out.normals[i]);
+    for (const std::string& name : names)
+    {
+      const AttributeArray& from = out.pointAttributes.get(name);
+      AttributeArray& into = Mesh.pointAttributes.get(name);
+      into.values.insert(into.values.end(), from.element(i), from.element(i) + from.components);
+    }
+    Bindings.emplace_back();
+  }
+  for (std::size_t c = globalTexture.size(); c < out.textureCoordinates.size(); ++c)
+  {
+    globalTexture.push_back(static_cast<int>(Mesh.textureCoordinates.size()));
+    Mesh.textureCoordinates.push_back(out.textureCoordinates[c]);
+  }
+}
+
+// Re-meshed triangle j back in the visual mesh, in its (active) region: an
+// input triangle keeps its index, a new piece is added; an inserted corner
+// joins the region with parameters interpolated along the edge it was
+// inserted in.
+void CuttableVisualMesh::spliceTriangle(RegionCut& region,
+  const RemeshedSurface& remeshed,
+  int j,
+  const std::vector<int>& global,
+  const std::vector<int>& globalTexture,
+  const std::vector<int>& globalTriangle,
+  CutContext& context)
+{
+  const TriangleMesh& out = remeshed.mesh;
+  // The local mesh's vertices come first, then the inserted ones.
+  const int localCount = static_cast<int>(remeshed.inputVertex.size() - remeshed.insertedOn.size());
+  const Triangle& corners = out.triangles[j];
+  const Triangle mapped{ { global[corners[0]], global[corners[1]], global[corners[2]] } };
+  for (int k = 0; k < 3; ++k)
+  {
+    if (context.local(mapped[k]) >= 0)
+      continue;
+    const auto misplaced = [&]
+    {
+      return Error("visual cut of '" + Mesh.name + "': re-meshing put visual vertex " +
+                   std::to_string(mapped[k]) + " in a region it does not belong to");
+    };
+    if (corners[k] < localCount)
+      throw misplaced();
+    const SurfacePoint& on = remeshed.insertedOn[corners[k] - localCount];
+    const int a = context.local(global[on.edgeStart]);
+    const int b = context.local(global[on.edgeEnd]);
+    if (a < 0 || b < 0)
+      throw misplaced();
+    const double u = on.edgeParameter;
+    context.addToActive(region,
+      mapped[k],
+      (1.0 - u) * region.parameters[a] + u * region.parameters[b],
+      (1.0 - u) * region.planar[a] + u * region.planar[b]);
+  }
+  int t = -1;
+  if (static_cast<std::size_t>(j) < globalTriangle.size())
+  {
+    t = globalTriangle[j];
+    Mesh.triangles[t] = mapped;
+  }
+  else
+  {
+    t = addTriangle(mapped, -1, 0, VisualMaterial::Surface);
+  }
+  if (Mesh.hasTextureCoordinates())
+  {
+    const Triangle& tex = out.textureCorners[j];
+    Mesh.textureCorners[t] = {
+      { globalTexture[tex[0]], globalTexture[tex[1]], globalTexture[tex[2]] }
+    };
+  }
+  region.newTriangles.push_back(t);
+  region.newLocalTriangles.push_back(
+    { { context.local(mapped[0]), context.local(mapped[1]), context.local(mapped[2]) } });
+  context.changedTriangles.push_back(t);
 }
 
 } // namespace thintissue

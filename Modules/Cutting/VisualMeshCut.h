@@ -55,6 +55,8 @@
 namespace thintissue
 {
 
+struct RemeshedSurface;
+
 struct VisualCutSettings
 {
   /// Rows of cut-surface vertices between the + and - sides (fig. 5-12c);
@@ -232,6 +234,17 @@ private:
   void splitEdgePaths(CutContext& context);
   void traceRegionCuts(CutContext& context);
   void remeshRegions(CutContext& context);
+  void appendInserted(const TriangleMesh& out,
+    std::vector<int>& global,
+    std::vector<int>& globalTexture,
+    CutContext& context);
+  void spliceTriangle(RegionCut& region,
+    const RemeshedSurface& remeshed,
+    int j,
+    const std::vector<int>& global,
+    const std::vector<int>& globalTexture,
+    const std::vector<int>& globalTriangle,
+    CutContext& context);
   void selectTouchedTriangles(int r,
     CutContext& context,
     std::vector<int>& triangles,
