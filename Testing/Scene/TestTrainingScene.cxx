@@ -112,3 +112,22 @@ TEST(TrainingScene, BadScenariosNameTheFileAndTheKey)
     EXPECT_NE(std::string(e.what()).find("key 'scope'"), std::string::npos) << e.what();
   }
 }
+
+TEST(TrainingScene, EveryShippedTornMeniscusExaminationRunsAndWrinkles)
+{
+  const SceneRecording recording =
+    readSceneRecording(Data + "/Recordings/meniscus-examination.json");
+  for (const char* tear : { "longitudinal", "radial", "flap", "horizontal-cleavage" })
+  {
+    SCOPED_TRACE(tear);
+    const ScenarioDescription scenario =
+      readScenario(Data + "/Scenarios/meniscus-examination-" + std::string(tear) + ".json");
+    EXPECT_EQ(scenario.tear, meniscusTearTypeFromName(tear));
+    ScriptedHapticDevice scope(recording.scope);
+    ScriptedHapticDevice instrument(recording.instrument);
+    TrainingScene scene(scenario, scope, instrument);
+    ASSERT_TRUE(scene.runTo(scenario.duration)) << scene.lastError();
+    EXPECT_GT(scene.metrics().peakForce, 0.0);
+    EXPECT_GT(scene.metrics().wrinklingSteps, 0);
+  }
+}
