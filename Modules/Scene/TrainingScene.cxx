@@ -70,7 +70,6 @@ void TrainingScene::buildTissue()
   Fem = std::make_unique<CorotationalHexFem>(Meniscus.simulation, Scenario.material, settings);
   Collision = std::make_unique<DeformableCollisionMesh>(Meniscus.collision, Meniscus.simulation);
   VisualEmbedding.embed(Meniscus.simulation, Meniscus.visual.positions);
-  VisualEmbedding.mapPositions(Fem->positions(), Visual);
   if (Scenario.wrinkles)
   {
     // Monitor points every 0.16 mm: about the thesis's 296 (6.4.1).
@@ -116,14 +115,27 @@ bool TrainingScene::step()
   Metrics.time = end;
   fillLocalContactModel(Contacts, Tool, 0, ServoTime, Servo->contactModelToFill(1));
   Servo->publishContactModel(1);
-  VisualEmbedding.mapPositions(Fem->positions(), Visual);
   if (Wrinkles)
   {
     Wrinkles->update(Fem->positions(), wrinkleContactState(Contacts, 0));
-    Wrinkles->applyTo(Visual);
   }
+  VisualStale = true;
   updateMetrics(previousTool, previousScope);
   return true;
+}
+
+const std::vector<Vector3>& TrainingScene::visualPositions() const
+{
+  if (VisualStale)
+  {
+    VisualEmbedding.mapPositions(Fem->positions(), Visual);
+    if (Wrinkles)
+    {
+      Wrinkles->applyTo(Visual);
+    }
+    VisualStale = false;
+  }
+  return Visual;
 }
 
 bool TrainingScene::runTo(double seconds)

@@ -65,7 +65,9 @@ public:
   /// The tissue: its model (rest meshes), the visual surface now (wrinkles
   /// included), whether it wrinkles.
   const TissueModel& tissue() const { return Meniscus; }
-  const std::vector<Vector3>& visualPositions() const { return Visual; }
+  /// Mapped from the hexahedra when asked for (a replay without pictures
+  /// never pays for it), wrinkles added.
+  const std::vector<Vector3>& visualPositions() const;
   bool wrinkling() const { return Wrinkles && Wrinkles->wrinkling(); }
   const KneeSurroundings& knee() const { return Knee; }
   const SurgicalInstrumentModel& instrumentModel() const { return Instrument; }
@@ -91,7 +93,8 @@ private:
   std::unique_ptr<HapticServo> Servo;
   std::unique_ptr<WrinkleGenerator> Wrinkles;
   HexahedralEmbedding VisualEmbedding;
-  std::vector<Vector3> Visual;
+  mutable std::vector<Vector3> Visual;
+  mutable bool VisualStale = true;
   RigidPose ScopePose;
   double ServoTime = 0.0;
   int CartilageObstacle = -1;
