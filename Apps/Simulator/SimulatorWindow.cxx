@@ -6,15 +6,24 @@
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
 
+#include "vtkHapticInteractorStyle.h"
+
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
 
 namespace thintissue
 {
 
-SimulatorWindow::SimulatorWindow(TrainingScene& scene, const QString& devices)
+SimulatorWindow::SimulatorWindow(TrainingScene& scene,
+  MouseHapticDevice* scope,
+  MouseHapticDevice* instrument)
   : Scene(scene)
   , View(std::make_unique<SimulatorView>(scene))
+  , FreePlay(scope != nullptr && instrument != nullptr)
 {
+  const QString devices = FreePlay ? "mouse and keyboard (Shift: arthroscope; left drag across, "
+                                     "right drag in and out, [ ] roll)"
+                                   : "the recording";
   setWindowTitle(
     QString("ThinTissue simulator - %1").arg(QString::fromStdString(scene.scenario().name)));
   Widget = new QVTKOpenGLNativeWidget(this);
@@ -22,6 +31,13 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene, const QString& devices)
   Widget->setRenderWindow(window);
   window->AddRenderer(View->renderer());
   setCentralWidget(Widget);
+  if (FreePlay)
+  {
+    vtkNew<vtkHapticInteractorStyle> style;
+    style->SetExternalMouseDevices(scope, instrument);
+    style->DriveCameraOff();
+    Widget->interactor()->SetInteractorStyle(style);
+  }
 
   auto* panel = new QWidget(this);
   auto* layout = new QVBoxLayout(panel);
@@ -47,7 +63,8 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene, const QString& devices)
 
 void SimulatorWindow::advance()
 {
-  const double now = std::min(Clock.elapsed() / 1000.0, Scene.scenario().duration);
+  const double elapsed = Clock.elapsed() / 1000.0;
+  const double now = FreePlay ? elapsed : std::min(elapsed, Scene.scenario().duration);
   if (!Scene.runTo(now))
   {
     Frames.stop();

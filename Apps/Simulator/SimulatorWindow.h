@@ -18,11 +18,15 @@ class QVTKOpenGLNativeWidget;
 namespace thintissue
 {
 
+class MouseHapticDevice;
+
 class SimulatorWindow : public QMainWindow
 {
   Q_OBJECT
 public:
-  SimulatorWindow(TrainingScene& scene, const QString& devices);
+  /// With mouse devices (both or neither) the mouse and keyboard drive
+  /// them and the run has no end; otherwise the scene replays its recording.
+  SimulatorWindow(TrainingScene& scene, MouseHapticDevice* scope, MouseHapticDevice* instrument);
 
 private:
   void advance();
@@ -34,6 +38,7 @@ private:
   QLabel* Metrics = nullptr;
   QTimer Frames;
   QElapsedTimer Clock;
+  bool FreePlay = false;
 };
 
 } // namespace thintissue

@@ -6,13 +6,16 @@
 //
 //   ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]
 //                       [--snapshots T1,T2,...] [--output DIR]
-//                       [--compare DIR] [--size WxH]
+//                       [--compare DIR] [--size WxH] [--devices replay|mouse]
 //
 // Defaults: the shipped meniscus examination and its recording; without a
-// display the program re-runs itself under xvfb-run, offscreen.
+// display the program re-runs itself under xvfb-run, offscreen. With
+// --devices mouse the mouse and keyboard drive the instrument (with Shift
+// the arthroscope): left drag across, right drag in and out, [ ] roll.
 #include "SimulatorView.h"
 #include "SimulatorWindow.h"
 
+#include "MouseHapticDevice.h"
 #include "ScriptedHapticDevice.h"
 #include "ThinTissueError.h"
 #include "TrainingScene.h"
@@ -54,13 +57,14 @@ struct Options
   std::string compare;
   int width = 640;
   int height = 480;
+  bool mouse = false;
 };
 
 void printUsage()
 {
   std::cerr << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
                "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
-               "                           [--size WxH]\n";
+               "                           [--size WxH] [--devices replay|mouse]\n";
 }
 
 bool parseTimes(const std::string& text, std::vector<double>& times)
@@ -105,6 +109,11 @@ bool parseArguments(int argc, char* argv[], Options& o)
     else if (a == "--output" && hasValue)
     {
       o.output = argv[++i];
+    }
+    else if (a == "--devices" && hasValue &&
+             (std::string(argv[i + 1]) == "mouse" || std::string(argv[i + 1]) == "replay"))
+    {
+      o.mouse = std::string(argv[++i]) == "mouse";
     }
     else if (a == "--compare" && hasValue)
     {
@@ -239,11 +248,15 @@ int runOffscreen(TrainingScene& scene, const Options& o)
   return matches ? 0 : 1;
 }
 
-int runWindow(TrainingScene& scene, int argc, char* argv[])
+int runWindow(TrainingScene& scene,
+  MouseHapticDevice* scope,
+  MouseHapticDevice* instrument,
+  int argc,
+  char* argv[])
 {
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication application(argc, argv);
-  SimulatorWindow window(scene, "scripted (recording)");
+  SimulatorWindow window(scene, scope, instrument);
   window.show();
   return application.exec();
 }
@@ -270,11 +283,21 @@ int main(int argc, char* argv[])
     const SceneRecording recording = readSceneRecording(options.replay);
     const ScenarioDescription scenario =
       readScenario(options.scenario.empty() ? recording.scenario : options.scenario);
-    ScriptedHapticDevice scope(recording.scope);
-    ScriptedHapticDevice instrument(recording.instrument);
+    ScriptedHapticDevice scriptedScope(recording.scope);
+    ScriptedHapticDevice scriptedInstrument(recording.instrument);
+    MouseHapticDevice mouseScope, mouseInstrument;
+    HapticDevice& scope = options.mouse ? static_cast<HapticDevice&>(mouseScope) : scriptedScope;
+    HapticDevice& instrument =
+      options.mouse ? static_cast<HapticDevice&>(mouseInstrument) : scriptedInstrument;
     TrainingScene scene(scenario, scope, instrument);
-    std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << ")\n";
-    return options.offscreen ? runOffscreen(scene, options) : runWindow(scene, argc, argv);
+    std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << "), "
+              << (options.mouse ? "mouse and keyboard" : "recording " + options.replay) << "\n";
+    if (options.offscreen)
+    {
+      return runOffscreen(scene, options);
+    }
+    return options.mouse ? runWindow(scene, &mouseScope, &mouseInstrument, argc, argv)
+                         : runWindow(scene, nullptr, nullptr, argc, argv);
   }
   catch (const Error& error)
   {

@@ -89,6 +89,13 @@ vtkHapticInteractorStyle::~vtkHapticInteractorStyle()
   this->SetInstrumentDeviceName(nullptr);
 }
 
+void vtkHapticInteractorStyle::SetExternalMouseDevices(thintissue::MouseHapticDevice* scope,
+  thintissue::MouseHapticDevice* instrument)
+{
+  this->StopDevices();
+  this->State->mouse = { scope, instrument };
+}
+
 void vtkHapticInteractorStyle::SetInstrumentProp(vtkProp3D* prop)
 {
   this->State->prop = prop;

@@ -38,6 +38,10 @@
 
 class vtkProp3D;
 class vtkLight;
+namespace thintissue
+{
+class MouseHapticDevice;
+}
 
 class THINTISSUEVTKHAPTICS_EXPORT vtkHapticInteractorStyle : public vtkInteractorStyle3D
 {
@@ -150,6 +154,11 @@ public:
   struct Internals;
   /// C++ only: the kernel objects (servo, devices), null when stopped.
   Internals* GetInternals() { return this->State.get(); }
+  /// C++ only: the mouse and keyboard drive these two devices (the
+  /// arthroscope's, the instrument's) of an application that runs its own
+  /// servo (e.g. a TrainingScene), instead of the style's. Null: the style's.
+  void SetExternalMouseDevices(thintissue::MouseHapticDevice* scope,
+    thintissue::MouseHapticDevice* instrument);
 
 protected:
   vtkHapticInteractorStyle();
