@@ -4,6 +4,7 @@
 #include "vtkThinTissueConversion.h"
 
 #include <vtkActor2D.h>
+#include <vtkActorCollection.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCoordinate.h>
@@ -132,6 +133,49 @@ void SimulatorView::placeRing(double aspect)
   RingAspect = aspect;
 }
 
+vtkRenderer* SimulatorView::overview()
+{
+  if (Overview)
+  {
+    return Overview;
+  }
+  Overview = vtkSmartPointer<vtkRenderer>::New();
+  Overview->SetBackground(0.10, 0.11, 0.14);
+  vtkActorCollection* actors = Renderer->GetActors();
+  actors->InitTraversal();
+  int index = 0;
+  while (vtkActor* actor = actors->GetNextActor())
+  {
+    if (index++ != 1) // every actor but the femur (it hides the joint)
+    {
+      Overview->AddActor(actor);
+    }
+  }
+  // The arthroscope's shaft: a line from its tip out through its portal.
+  ScopeShaft = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetNumberOfPoints(2);
+  ScopeShaft->SetPoints(points);
+  vtkNew<vtkCellArray> line;
+  const vtkIdType ends[2] = { 0, 1 };
+  line->InsertNextCell(2, ends);
+  ScopeShaft->SetLines(line);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(ScopeShaft);
+  vtkNew<vtkActor> shaft;
+  shaft->SetMapper(mapper);
+  shaft->GetProperty()->SetColor(0.3, 0.8, 1.0);
+  shaft->GetProperty()->SetLineWidth(3.0);
+  Overview->AddActor(shaft);
+  vtkCamera* camera = Overview->GetActiveCamera();
+  camera->SetFocalPoint(-15.0, 5.0, 5.0);
+  camera->SetPosition(-15.0, 125.0, 95.0);
+  camera->SetViewUp(0.0, 0.0, 1.0);
+  Overview->ResetCameraClippingRange();
+  update();
+  return Overview;
+}
+
 void SimulatorView::update()
 {
   if (Renderer->GetRenderWindow() != nullptr)
@@ -182,6 +226,15 @@ void SimulatorView::update()
   camera->SetViewUp(view.viewUp.data());
   camera->SetViewAngle(70.0);
   camera->SetClippingRange(0.5, 300.0);
+  if (ScopeShaft)
+  {
+    const RigidPose& scope = Scene.scopePose();
+    const Vector3 handle = scope * Vector3(0.0, 0.0, 60.0);
+    ScopeShaft->GetPoints()->SetPoint(0, scope.translation.data());
+    ScopeShaft->GetPoints()->SetPoint(1, handle.data());
+    ScopeShaft->GetPoints()->Modified();
+    Overview->ResetCameraClippingRange();
+  }
 }
 
 void SimulatorView::writePicture(vtkRenderWindow* window, const std::string& path)

@@ -25,6 +25,10 @@ class SimulatorView
 public:
   explicit SimulatorView(const TrainingScene& scene);
   vtkRenderer* renderer() const { return Renderer; }
+  /// The overview: the same knee, tissue and instrument seen from outside
+  /// the joint (femur hidden), with the arthroscope's shaft; its camera is
+  /// fixed. Made on first call.
+  vtkRenderer* overview();
   /// Follows the scene: tissue points and normals, instrument, camera.
   void update();
   /// Writes the window's picture (PNG).
@@ -41,6 +45,8 @@ private:
   vtkSmartPointer<vtkPolyData> Tissue;
   vtkSmartPointer<vtkActor> Instrument;
   vtkSmartPointer<vtkPolyData> Ring;
+  vtkSmartPointer<vtkRenderer> Overview;
+  vtkSmartPointer<vtkPolyData> ScopeShaft;
   double RingAspect = 0.0;
 };
 

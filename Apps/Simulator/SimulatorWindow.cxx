@@ -30,6 +30,12 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene,
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   Widget->setRenderWindow(window);
   window->AddRenderer(View->renderer());
+  // The overview in a corner, over the arthroscope's black surround.
+  vtkRenderer* overview = View->overview();
+  overview->SetViewport(0.74, 0.0, 1.0, 0.34);
+  overview->SetLayer(1);
+  window->SetNumberOfLayers(2);
+  window->AddRenderer(overview);
   setCentralWidget(Widget);
   if (FreePlay)
   {
