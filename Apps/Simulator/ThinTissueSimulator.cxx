@@ -7,11 +7,14 @@
 //   ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]
 //                       [--snapshots T1,T2,...] [--output DIR]
 //                       [--compare DIR] [--size WxH] [--devices replay|mouse]
+//                       [--record R.json]
 //
 // Defaults: the shipped meniscus examination and its recording; without a
 // display the program re-runs itself under xvfb-run, offscreen. With
 // --devices mouse the mouse and keyboard drive the instrument (with Shift
-// the arthroscope): left drag across, right drag in and out, [ ] roll.
+// the arthroscope): left drag across, right drag in and out, [ ] roll;
+// --record writes what they did as a recording (up to 5 minutes) that
+// --replay plays back bit for bit.
 #include "SimulatorView.h"
 #include "SimulatorWindow.h"
 
@@ -58,13 +61,15 @@ struct Options
   int width = 640;
   int height = 480;
   bool mouse = false;
+  std::string record;
 };
 
 void printUsage()
 {
-  std::cerr << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
-               "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
-               "                           [--size WxH] [--devices replay|mouse]\n";
+  std::cerr
+    << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
+       "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
+       "                           [--size WxH] [--devices replay|mouse] [--record R.json]\n";
 }
 
 bool parseTimes(const std::string& text, std::vector<double>& times)
@@ -114,6 +119,10 @@ bool parseArguments(int argc, char* argv[], Options& o)
              (std::string(argv[i + 1]) == "mouse" || std::string(argv[i + 1]) == "replay"))
     {
       o.mouse = std::string(argv[++i]) == "mouse";
+    }
+    else if (a == "--record" && hasValue)
+    {
+      o.record = argv[++i];
     }
     else if (a == "--compare" && hasValue)
     {
@@ -286,18 +295,35 @@ int main(int argc, char* argv[])
     ScriptedHapticDevice scriptedScope(recording.scope);
     ScriptedHapticDevice scriptedInstrument(recording.instrument);
     MouseHapticDevice mouseScope, mouseInstrument;
-    HapticDevice& scope = options.mouse ? static_cast<HapticDevice&>(mouseScope) : scriptedScope;
-    HapticDevice& instrument =
+    HapticDevice& liveScope =
+      options.mouse ? static_cast<HapticDevice&>(mouseScope) : scriptedScope;
+    HapticDevice& liveInstrument =
       options.mouse ? static_cast<HapticDevice&>(mouseInstrument) : scriptedInstrument;
+    // Five minutes at 1 kHz when recording, nothing otherwise.
+    const std::size_t capacity = options.record.empty() ? 0 : 300000;
+    RecordingHapticDevice scope(liveScope, capacity), instrument(liveInstrument, capacity);
     TrainingScene scene(scenario, scope, instrument);
+    const auto writeRecording = [&]
+    {
+      if (!options.record.empty())
+      {
+        writeSceneRecording(options.record,
+          SceneRecording{ std::filesystem::absolute(scenario.source).string(),
+            0,
+            scope.trajectory(),
+            instrument.trajectory() });
+        std::cout << "recording written to " << options.record << "\n";
+      }
+    };
     std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << "), "
               << (options.mouse ? "mouse and keyboard" : "recording " + options.replay) << "\n";
-    if (options.offscreen)
-    {
-      return runOffscreen(scene, options);
-    }
-    return options.mouse ? runWindow(scene, &mouseScope, &mouseInstrument, argc, argv)
-                         : runWindow(scene, nullptr, nullptr, argc, argv);
+    const int status =
+      options.offscreen
+        ? runOffscreen(scene, options)
+        : (options.mouse ? runWindow(scene, &mouseScope, &mouseInstrument, argc, argv)
+                         : runWindow(scene, nullptr, nullptr, argc, argv));
+    writeRecording();
+    return status;
   }
   catch (const Error& error)
   {

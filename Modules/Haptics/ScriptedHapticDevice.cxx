@@ -121,7 +121,12 @@ ScriptedHapticDevice::ScriptedHapticDevice(HapticTrajectory trajectory,
   checkTrajectory(Trajectory, "scripted device '" + Info.name + "'");
   for (HapticSample& s : Trajectory.samples)
   {
-    s.orientation.normalize();
+    // Recorded orientations are unit already: keep their bits, so that a
+    // replay reproduces the recorded run exactly.
+    if (std::abs(s.orientation.squaredNorm() - 1.0) > 1e-12)
+    {
+      s.orientation.normalize();
+    }
   }
   Forces.reserve(forceCapacity);
 }
@@ -171,13 +176,19 @@ RecordingHapticDevice::RecordingHapticDevice(HapticDevice& device, std::size_t c
 
 HapticDeviceState RecordingHapticDevice::read(double time)
 {
-  const HapticDeviceState state = Device.read(time);
+  HapticDeviceState state = Device.read(time);
+  // The run goes on with the orientation as the recording stores it (a unit
+  // quaternion), so that replaying the recording gives the same run bit for
+  // bit; velocity is what a replay gives at a sample (none).
+  const Eigen::Quaterniond orientation = Eigen::Quaterniond(state.orientation).normalized();
+  state.orientation = orientation.toRotationMatrix();
+  state.velocity = Vector3::Zero();
   if (Samples.size() < Samples.capacity() && (Samples.empty() || time > Samples.back().time))
   {
     HapticSample s;
     s.time = time;
     s.position = state.position;
-    s.orientation = Eigen::Quaterniond(state.orientation);
+    s.orientation = orientation;
     s.buttons = state.buttons;
     Samples.push_back(s);
   }

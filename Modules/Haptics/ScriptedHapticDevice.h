@@ -74,7 +74,10 @@ private:
 };
 
 /// Wraps a device and records what it reads (room for `capacity` samples,
-/// reserved up front; further samples are not recorded).
+/// reserved up front; further samples are not recorded). What it returns is
+/// what a replay of the recording returns at the same times (orientation
+/// through the stored unit quaternion, no velocity), so a lock-step run and
+/// its replay agree bit for bit.
 class THINTISSUEHAPTICS_EXPORT RecordingHapticDevice : public HapticDevice
 {
 public:

@@ -2,6 +2,7 @@
 // from its recording (the hook presses the inner border onto the plateau and
 // lets go: wrinkles), deterministic bit for bit, with metrics; scenario and
 // recording files validated with the file and the key named.
+#include "MouseHapticDevice.h"
 #include "ScriptedHapticDevice.h"
 #include "ThinTissueError.h"
 #include "ThinTissueTestSupport.h"
@@ -130,4 +131,38 @@ TEST(TrainingScene, EveryShippedTornMeniscusExaminationRunsAndWrinkles)
     EXPECT_GT(scene.metrics().peakForce, 0.0);
     EXPECT_GT(scene.metrics().wrinklingSteps, 0);
   }
+}
+
+TEST(TrainingScene, ARunRecordedFromLiveDevicesReplaysBitForBit)
+{
+  // Live devices (the mouse's, set between steps as a GUI would) recorded,
+  // then the recording replayed: the same meshes.
+  const ScenarioDescription scenario = readScenario(Data + "/Scenarios/meniscus-examination.json");
+  MouseHapticDevice scopeMouse, instrumentMouse;
+  RecordingHapticDevice scope(scopeMouse, 10000), instrument(instrumentMouse, 10000);
+  TrainingScene live(scenario, scope, instrument);
+  HapticDeviceState stylus;
+  for (int k = 0; k < 600; ++k)
+  {
+    stylus.position = Vector3(0.01 * k, -0.004 * k, -0.02 * k);
+    stylus.orientation =
+      Eigen::AngleAxisd(0.003 * k, Vector3(0.2, 0.1, 1.0).normalized()).toRotationMatrix();
+    stylus.buttons = k > 300 ? 1u : 0u;
+    instrumentMouse.setState(stylus);
+    ASSERT_TRUE(live.step());
+  }
+  SceneRecording recording;
+  recording.scenario = scenario.source;
+  recording.scope = scope.trajectory();
+  recording.instrument = instrument.trajectory();
+  const std::string path = (thintissue::testing::temporaryDirectory() / "live.json").string();
+  writeSceneRecording(path, recording);
+  const SceneRecording back = readSceneRecording(path);
+  ScriptedHapticDevice scopeReplay(back.scope), instrumentReplay(back.instrument);
+  TrainingScene replay(readScenario(back.scenario), scopeReplay, instrumentReplay);
+  ASSERT_TRUE(replay.runTo(live.time()));
+  EXPECT_EQ(replay.instrumentPose().translation, live.instrumentPose().translation);
+  EXPECT_EQ(replay.instrumentPose().rotation, live.instrumentPose().rotation);
+  EXPECT_EQ(replay.visualPositions(), live.visualPositions());
+  EXPECT_GT(live.metrics().instrumentPathLength, 1.0);
 }
