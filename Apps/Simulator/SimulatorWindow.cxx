@@ -1,6 +1,9 @@
 #include "SimulatorWindow.h"
 
+#include <QComboBox>
+#include <QDir>
 #include <QDockWidget>
+#include <QFileInfo>
 #include <QLabel>
 #include <QMessageBox>
 #include <QVBoxLayout>
@@ -17,25 +20,16 @@ namespace thintissue
 SimulatorWindow::SimulatorWindow(TrainingScene& scene,
   MouseHapticDevice* scope,
   MouseHapticDevice* instrument)
-  : Scene(scene)
-  , View(std::make_unique<SimulatorView>(scene))
+  : Scene(&scene)
   , FreePlay(scope != nullptr && instrument != nullptr)
 {
   const QString devices = FreePlay ? "mouse and keyboard (Shift: arthroscope; left drag across, "
                                      "right drag in and out, [ ] roll)"
                                    : "the recording";
-  setWindowTitle(
-    QString("ThinTissue simulator - %1").arg(QString::fromStdString(scene.scenario().name)));
   Widget = new QVTKOpenGLNativeWidget(this);
   vtkNew<vtkGenericOpenGLRenderWindow> window;
-  Widget->setRenderWindow(window);
-  window->AddRenderer(View->renderer());
-  // The overview in a corner, over the arthroscope's black surround.
-  vtkRenderer* overview = View->overview();
-  overview->SetViewport(0.74, 0.0, 1.0, 0.34);
-  overview->SetLayer(1);
   window->SetNumberOfLayers(2);
-  window->AddRenderer(overview);
+  Widget->setRenderWindow(window);
   setCentralWidget(Widget);
   if (FreePlay)
   {
@@ -47,12 +41,12 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene,
 
   auto* panel = new QWidget(this);
   auto* layout = new QVBoxLayout(panel);
-  auto* scenario = new QLabel(QString("<b>%1</b><br>%2")
-                                .arg(QString::fromStdString(scene.scenario().name),
-                                  QString::fromStdString(scene.scenario().description)),
-    panel);
-  scenario->setWordWrap(true);
-  layout->addWidget(scenario);
+  Scenarios = new QComboBox(panel);
+  Scenarios->setEnabled(false);
+  layout->addWidget(Scenarios);
+  ScenarioText = new QLabel(panel);
+  ScenarioText->setWordWrap(true);
+  layout->addWidget(ScenarioText);
   layout->addWidget(new QLabel("Devices: " + devices, panel));
   Metrics = new QLabel(panel);
   layout->addWidget(Metrics);
@@ -63,18 +57,91 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene,
   resize(1280, 720);
 
   connect(&Frames, &QTimer::timeout, this, &SimulatorWindow::advance);
+  showScene();
   Frames.start(16);
-  Clock.start();
+}
+
+void SimulatorWindow::showScene()
+{
+  vtkRenderWindow* window = Widget->renderWindow();
+  if (View)
+  {
+    window->RemoveRenderer(View->renderer());
+    window->RemoveRenderer(View->overview());
+  }
+  View = std::make_unique<SimulatorView>(*Scene);
+  window->AddRenderer(View->renderer());
+  // The overview in a corner, over the arthroscope's black surround.
+  vtkRenderer* overview = View->overview();
+  overview->SetViewport(0.74, 0.0, 1.0, 0.34);
+  overview->SetLayer(1);
+  window->AddRenderer(overview);
+  const ScenarioDescription& s = Scene->scenario();
+  setWindowTitle(QString("ThinTissue simulator - %1").arg(QString::fromStdString(s.name)));
+  ScenarioText->setText(
+    QString("<b>%1</b><br>%2")
+      .arg(QString::fromStdString(s.name), QString::fromStdString(s.description)));
+  Clock.restart();
+}
+
+void SimulatorWindow::setScenarios(const std::string& directory, SceneFactory factory)
+{
+  Factory = std::move(factory);
+  const QDir folder(QString::fromStdString(directory));
+  Scenarios->clear();
+  for (const QString& file : folder.entryList({ "*.json" }, QDir::Files, QDir::Name))
+  {
+    Scenarios->addItem(file, folder.absoluteFilePath(file));
+  }
+  const int current = Scenarios->findData(
+    QFileInfo(QString::fromStdString(Scene->scenario().source)).absoluteFilePath());
+  Scenarios->setCurrentIndex(current);
+  Scenarios->setEnabled(true);
+  connect(Scenarios,
+    QOverload<int>::of(&QComboBox::activated),
+    this,
+    [this](int index) { loadScenario(Scenarios->itemData(index).toString().toStdString()); });
+}
+
+bool SimulatorWindow::loadScenario(const std::string& path)
+{
+  if (!Factory)
+  {
+    return false;
+  }
+  try
+  {
+    std::unique_ptr<TrainingScene> next = Factory(path);
+    Owned.swap(next); // the old one (if owned) goes after the view is rebuilt
+    Scene = Owned.get();
+    showScene();
+    return true;
+  }
+  catch (const std::exception& error)
+  {
+    // Not modal: the running scenario goes on behind the message.
+    auto* box = new QMessageBox(QMessageBox::Warning,
+      "Scenario not loaded",
+      QString::fromStdString(error.what()),
+      QMessageBox::Ok,
+      this);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->show();
+    const int current = Scenarios->findData(
+      QFileInfo(QString::fromStdString(Scene->scenario().source)).absoluteFilePath());
+    Scenarios->setCurrentIndex(current);
+    return false;
+  }
 }
 
 void SimulatorWindow::advance()
 {
   const double elapsed = Clock.elapsed() / 1000.0;
-  const double now = FreePlay ? elapsed : std::min(elapsed, Scene.scenario().duration);
-  if (!Scene.runTo(now))
+  const double now = FreePlay ? elapsed : std::min(elapsed, Scene->scenario().duration);
+  if (!Scene->runTo(now))
   {
     Frames.stop();
-    QMessageBox::warning(this, "Simulation stopped", QString::fromStdString(Scene.lastError()));
+    QMessageBox::warning(this, "Simulation stopped", QString::fromStdString(Scene->lastError()));
     return;
   }
   View->update();
@@ -84,7 +151,7 @@ void SimulatorWindow::advance()
 
 void SimulatorWindow::showMetrics()
 {
-  const SceneMetrics& m = Scene.metrics();
+  const SceneMetrics& m = Scene->metrics();
   Metrics->setText(QString("time %1 s<br>instrument path %2 mm<br>camera path %3 mm<br>"
                            "peak force %4 N<br>cartilage contacts %5 steps<br>%6")
                      .arg(m.time, 0, 'f', 2)
@@ -92,7 +159,7 @@ void SimulatorWindow::showMetrics()
                      .arg(m.cameraPathLength, 0, 'f', 1)
                      .arg(m.peakForce, 0, 'f', 2)
                      .arg(m.cartilageContactSteps)
-                     .arg(Scene.wrinkling() ? "<b>wrinkling</b>" : ""));
+                     .arg(Scene->wrinkling() ? "<b>wrinkling</b>" : ""));
 }
 
 } // namespace thintissue

@@ -10,8 +10,11 @@
 #include <QMainWindow>
 #include <QTimer>
 
+#include <functional>
 #include <memory>
+#include <string>
 
+class QComboBox;
 class QLabel;
 class QVTKOpenGLNativeWidget;
 
@@ -28,11 +31,26 @@ public:
   /// them and the run has no end; otherwise the scene replays its recording.
   SimulatorWindow(TrainingScene& scene, MouseHapticDevice* scope, MouseHapticDevice* instrument);
 
+  /// Makes a scene from a scenario file with the window's devices (throws
+  /// on a scenario it cannot build).
+  using SceneFactory = std::function<std::unique_ptr<TrainingScene>(const std::string&)>;
+  /// Offers the scenario files of `directory` to choose from.
+  void setScenarios(const std::string& directory, SceneFactory factory);
+  /// Starts the scenario in `path`; on failure says why in a dialog, keeps
+  /// the running one and returns false.
+  bool loadScenario(const std::string& path);
+  const TrainingScene& scene() const { return *Scene; }
+
 private:
   void advance();
   void showMetrics();
+  void showScene();
 
-  TrainingScene& Scene;
+  TrainingScene* Scene;
+  std::unique_ptr<TrainingScene> Owned;
+  SceneFactory Factory;
+  QComboBox* Scenarios = nullptr;
+  QLabel* ScenarioText = nullptr;
   std::unique_ptr<SimulatorView> View;
   QVTKOpenGLNativeWidget* Widget = nullptr;
   QLabel* Metrics = nullptr;

@@ -260,12 +260,14 @@ int runOffscreen(TrainingScene& scene, const Options& o)
 int runWindow(TrainingScene& scene,
   MouseHapticDevice* scope,
   MouseHapticDevice* instrument,
+  const SimulatorWindow::SceneFactory& factory,
   int argc,
   char* argv[])
 {
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication application(argc, argv);
   SimulatorWindow window(scene, scope, instrument);
+  window.setScenarios(std::string(THINTISSUE_DATA_DIR) + "/Scenarios", factory);
   window.show();
   return application.exec();
 }
@@ -317,11 +319,13 @@ int main(int argc, char* argv[])
     };
     std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << "), "
               << (options.mouse ? "mouse and keyboard" : "recording " + options.replay) << "\n";
-    const int status =
-      options.offscreen
-        ? runOffscreen(scene, options)
-        : (options.mouse ? runWindow(scene, &mouseScope, &mouseInstrument, argc, argv)
-                         : runWindow(scene, nullptr, nullptr, argc, argv));
+    // Another scenario, chosen in the window, with the same devices.
+    const SimulatorWindow::SceneFactory factory = [&](const std::string& path)
+    { return std::make_unique<TrainingScene>(readScenario(path), scope, instrument); };
+    const int status = options.offscreen ? runOffscreen(scene, options)
+                       : options.mouse
+                         ? runWindow(scene, &mouseScope, &mouseInstrument, factory, argc, argv)
+                         : runWindow(scene, nullptr, nullptr, factory, argc, argv);
     writeRecording();
     return status;
   }

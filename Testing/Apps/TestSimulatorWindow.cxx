@@ -1,7 +1,8 @@
 // A smoke test of the simulator's window under Xvfb: the meniscus
 // examination with mouse devices; a left drag in the arthroscope view moves
 // the instrument while Qt's event loop runs the scene; the live metrics
-// follow. (The window's classes are compiled in from Apps/Simulator.)
+// follow; a scenario that fails to load leaves the running one, another
+// one starts. (The window's classes are compiled in from Apps/Simulator.)
 #include "MouseHapticDevice.h"
 #include "SimulatorWindow.h"
 #include "TrainingScene.h"
@@ -43,12 +44,31 @@ int main(int argc, char* argv[])
       interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
       interactor->InvokeEvent(vtkCommand::LeftButtonReleaseEvent);
     });
-  QTimer::singleShot(900, &application, &QApplication::quit);
+  // A scenario that cannot load leaves the running one; a good one starts.
+  window.setScenarios(std::string(THINTISSUE_DATA_DIR) + "/Scenarios",
+    [&](const std::string& path)
+    { return std::make_unique<TrainingScene>(readScenario(path), scope, instrument); });
+  bool badRefused = false, tornLoaded = false;
+  QTimer::singleShot(1000,
+    [&]
+    {
+      badRefused = !window.loadScenario(std::string(THINTISSUE_DATA_DIR) + "/no-such.json") &&
+                   &window.scene() == &scene;
+      tornLoaded = window.loadScenario(
+        std::string(THINTISSUE_DATA_DIR) + "/Scenarios/meniscus-examination-radial.json");
+    });
+  QTimer::singleShot(1500, &application, &QApplication::quit);
   application.exec();
+  std::cout << "bad scenario refused " << badRefused << ", torn scenario loaded " << tornLoaded
+            << " (" << window.scene().scenario().name << ", at " << window.scene().time()
+            << " s)\n";
   const Vector3 moved = scene.instrumentPose().translation - start;
   std::cout << "scene time " << scene.time() << " s, instrument moved " << moved.transpose()
             << " mm\n";
   const bool ran = scene.time() > 0.3;
   const bool followed = moved.norm() > 5.0;
-  return ran && followed ? EXIT_SUCCESS : EXIT_FAILURE;
+  const bool switched = badRefused && tornLoaded &&
+                        window.scene().scenario().tear == MeniscusTearType::Radial &&
+                        window.scene().time() > 0.0;
+  return ran && followed && switched ? EXIT_SUCCESS : EXIT_FAILURE;
 }
