@@ -14,16 +14,6 @@ namespace
 using namespace thintissue;
 using namespace thintissue::bench;
 
-std::vector<WrinkleDataCurve> dataOf(const MeniscusModel& model)
-{
-  std::vector<WrinkleDataCurve> data;
-  for (const MonitorCurve& c : model.monitorCurves)
-  {
-    data.push_back(WrinkleDataCurve{ c.name, c.monitorPoints, c.regionPoints, c.thickness });
-  }
-  return data;
-}
-
 /// The spacing that gives `count` monitor points along the data curves.
 double spacingFor(const std::vector<WrinkleDataCurve>& data, int count)
 {
@@ -86,7 +76,7 @@ THINTISSUE_BENCHMARK_SUITE(wrinklesSuite,
 (const BenchmarkContext& context, BenchmarkReporter& reporter)
 {
   const MeniscusModel model = makeMeniscus(examinationMeniscusParameters());
-  const std::vector<WrinkleDataCurve> data = dataOf(model);
+  const std::vector<WrinkleDataCurve> data = wrinkleDataCurves(model.monitorCurves);
   const MonitorPointSet monitors = resampleMonitorCurves(data, spacingFor(data, 296));
   const std::string name = std::to_string(monitors.size()) + " monitor points, 70 selected, " +
                            std::to_string(model.visual.triangleCount()) + "-face meniscus";

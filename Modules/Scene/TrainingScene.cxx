@@ -21,16 +21,6 @@ PortalSettings portalOf(const PortalDescription& p)
   return s;
 }
 
-std::vector<WrinkleDataCurve> wrinkleDataOf(const MeniscusModel& model)
-{
-  std::vector<WrinkleDataCurve> data;
-  for (const MonitorCurve& c : model.monitorCurves)
-  {
-    data.push_back(WrinkleDataCurve{ c.name, c.monitorPoints, c.regionPoints, c.thickness });
-  }
-  return data;
-}
-
 } // namespace
 
 TrainingScene::TrainingScene(const ScenarioDescription& scenario,
@@ -74,7 +64,7 @@ void TrainingScene::buildTissue()
   {
     // Monitor points every 0.16 mm: about the thesis's 296 (6.4.1).
     Wrinkles = std::make_unique<WrinkleGenerator>(
-      resampleMonitorCurves(wrinkleDataOf(Meniscus), 0.16, Scenario.source),
+      resampleMonitorCurves(wrinkleDataCurves(Meniscus.monitorCurves), 0.16, Scenario.source),
       Meniscus.simulation,
       Meniscus.visual);
   }

@@ -232,6 +232,16 @@ MonitorPointSet resampleMonitorCurves(const std::vector<WrinkleDataCurve>& curve
   return set;
 }
 
+std::vector<WrinkleDataCurve> wrinkleDataCurves(const std::vector<MonitorCurve>& curves)
+{
+  std::vector<WrinkleDataCurve> data;
+  for (const MonitorCurve& c : curves)
+  {
+    data.push_back(WrinkleDataCurve{ c.name, c.monitorPoints, c.regionPoints, c.thickness });
+  }
+  return data;
+}
+
 std::vector<WrinkleDataCurve> monitorCurvesOf(const MonitorPointSet& set)
 {
   std::vector<WrinkleDataCurve> curves(set.curveCount());

@@ -11,6 +11,7 @@
 #ifndef MonitorCurves_h
 #define MonitorCurves_h
 
+#include "MeniscusModel.h"
 #include "ThinTissueWrinklesModule.h"
 #include "TriangleMesh.h"
 
@@ -73,6 +74,11 @@ THINTISSUEWRINKLES_EXPORT MonitorPointSet resampleMonitorCurves(
   const std::vector<WrinkleDataCurve>& curves,
   double maxSpacing,
   const std::string& source = "wrinkle data");
+
+/// The data point pairs a procedural meniscus supplies (MeniscusModel's
+/// monitorCurves), as wrinkle data.
+THINTISSUEWRINKLES_EXPORT std::vector<WrinkleDataCurve> wrinkleDataCurves(
+  const std::vector<MonitorCurve>& curves);
 
 /// The curves as data (one WrinkleDataCurve per curve of the set).
 THINTISSUEWRINKLES_EXPORT std::vector<WrinkleDataCurve> monitorCurvesOf(const MonitorPointSet& set);

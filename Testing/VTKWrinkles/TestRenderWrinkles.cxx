@@ -31,16 +31,6 @@ using namespace thintissue;
 namespace
 {
 
-std::vector<WrinkleDataCurve> dataOf(const MeniscusModel& model)
-{
-  std::vector<WrinkleDataCurve> data;
-  for (const MonitorCurve& c : model.monitorCurves)
-  {
-    data.push_back(WrinkleDataCurve{ c.name, c.monitorPoints, c.regionPoints, c.thickness });
-  }
-  return data;
-}
-
 struct PressedMeniscus
 {
   MeniscusModel model;
@@ -53,7 +43,7 @@ PressedMeniscus pressedMeniscus(MeniscusTearType tear)
   MeniscusParameters p = examinationMeniscusParameters();
   p.tear = defaultMeniscusTear(tear);
   PressedMeniscus m{ makeMeniscus(p), {}, Vector3::Zero() };
-  m.monitors = resampleMonitorCurves(dataOf(m.model), 0.16);
+  m.monitors = resampleMonitorCurves(wrinkleDataCurves(m.model.monitorCurves), 0.16);
   // The middle of the inner border, or beside a radial tear (the first
   // curve ends at the tear): 4 mm before that end.
   const int curveEnd = m.monitors.curveStarts[1];

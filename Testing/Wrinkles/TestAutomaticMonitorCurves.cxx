@@ -64,7 +64,7 @@ TEST(AutomaticMonitorCurves, LandOnTheInnerRimOfTheIntactMeniscus)
   const MeniscusModel m = makeMeniscus();
   const auto automatic = deriveWrinkleDataCurves(m.collision, m.collisionRadii());
   ASSERT_EQ(automatic.size(), 1u);
-  const auto model = wrinkleDataOf(m.monitorCurves);
+  const auto model = wrinkleDataCurves(m.monitorCurves);
   // Every automatic monitor data point is near the model's inner border
   // curve, and the model's curve is covered (the horn tips aside).
   for (const Vector3& x : automatic[0].monitorPoints)
@@ -98,7 +98,7 @@ TEST(AutomaticMonitorCurves, FollowTheRemainingRimOfEveryTornMeniscus)
     ASSERT_FALSE(automatic.empty());
     // The model's inner border curves (not the lips) are covered.
     std::vector<WrinkleDataCurve> innerBorder;
-    for (const auto& c : wrinkleDataOf(m.monitorCurves))
+    for (const auto& c : wrinkleDataCurves(m.monitorCurves))
     {
       if (c.name.rfind("inner border", 0) == 0)
       {
@@ -207,7 +207,7 @@ TEST(AutomaticMonitorCurves, OnAPreparedMeniscusTheInnerRimAndOnTheSteakItsThinn
   const std::vector<double>& radii = prepared.mesh.pointAttributes.get("Radius").values;
   const auto automatic = deriveWrinkleDataCurves(prepared.mesh, radii);
   ASSERT_FALSE(automatic.empty());
-  const auto model = wrinkleDataOf(m.monitorCurves);
+  const auto model = wrinkleDataCurves(m.monitorCurves);
   EXPECT_GT(coverage(model, automatic, 2.0), 0.7);
   const auto [border, chosen] = meanBorderAndChosenRadius(prepared.mesh, radii, automatic);
   EXPECT_LT(chosen, 0.5 * border);

@@ -46,7 +46,7 @@ std::string messageOf(const std::function<void()>& f)
 TEST(MonitorCurves, SplinesThroughTheDataPointsResampledWithinTheSpacing)
 {
   const MeniscusModel m = makeMeniscus();
-  const auto data = wrinkleDataOf(m.monitorCurves);
+  const auto data = wrinkleDataCurves(m.monitorCurves);
   const MonitorPointSet set = resampleMonitorCurves(data, 0.2);
   ASSERT_EQ(set.curveCount(), 1u);
   ASSERT_EQ(set.regionPoints.size(), set.size());
@@ -93,7 +93,7 @@ TEST(MonitorCurves, EveryTearTypeGivesOneSetOfCurves)
     MeniscusParameters p;
     p.tear = defaultMeniscusTear(type);
     const MeniscusModel m = makeMeniscus(p);
-    const MonitorPointSet set = resampleMonitorCurves(wrinkleDataOf(m.monitorCurves), 0.25);
+    const MonitorPointSet set = resampleMonitorCurves(wrinkleDataCurves(m.monitorCurves), 0.25);
     EXPECT_EQ(set.curveCount(), m.monitorCurves.size());
     for (std::size_t c = 0; c < set.curveCount(); ++c)
     {

@@ -1,5 +1,5 @@
-// Shared by the wrinkle tests: the meniscus model's data points as wrinkle
-// data, and a press of the hexahedra without a solver (a smooth dent).
+// Shared by the wrinkle tests: the examination meniscus with its monitor
+// points, and a press of the hexahedra without a solver (a smooth dent).
 #ifndef WrinkleTestHelpers_h
 #define WrinkleTestHelpers_h
 
@@ -12,16 +12,6 @@
 
 namespace thintissue::testing
 {
-
-inline std::vector<WrinkleDataCurve> wrinkleDataOf(const std::vector<MonitorCurve>& curves)
-{
-  std::vector<WrinkleDataCurve> data;
-  for (const MonitorCurve& c : curves)
-  {
-    data.push_back(WrinkleDataCurve{ c.name, c.monitorPoints, c.regionPoints, c.thickness });
-  }
-  return data;
-}
 
 /// The examination meniscus (6.4.1) and its monitor points every 0.16 mm
 /// (about the thesis's 296 along the inner border).
@@ -40,7 +30,7 @@ inline MeniscusWrinkleCase meniscusWrinkleCase(MeniscusTearType tear = MeniscusT
     p.tear = defaultMeniscusTear(tear);
   }
   MeniscusWrinkleCase c{ makeMeniscus(p), {} };
-  c.monitors = resampleMonitorCurves(wrinkleDataOf(c.model.monitorCurves), spacing);
+  c.monitors = resampleMonitorCurves(wrinkleDataCurves(c.model.monitorCurves), spacing);
   return c;
 }
 
