@@ -1,6 +1,6 @@
 #include "SimulatorView.h"
 
-#include "MouseHapticDevice.h"
+#include "PortalMapping.h"
 #include "vtkThinTissueConversion.h"
 
 #include <vtkActor2D.h>

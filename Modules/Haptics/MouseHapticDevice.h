@@ -6,7 +6,6 @@
 
 #include "HapticDevice.h"
 #include "LatestValue.h"
-#include "RigidTool.h"
 #include "ThinTissueHapticsModule.h"
 
 #include <atomic>
@@ -32,25 +31,6 @@ private:
   LatestValue<HapticDeviceState> States;
   LatestValue<Vector3> Forces;
 };
-
-/// The arthroscope's view from its pose (instrument frame: tip at the
-/// origin, +z along the shaft toward the handle, +x the side the lens looks
-/// to): the camera at the tip, looking down the shaft turned by
-/// `viewingAngle` (degrees; 30 for the usual arthroscope) toward +x, so that
-/// rolling the scope sweeps the view around the shaft; the image's up is
-/// `worldUp` as far as the view direction allows (the camera head is held
-/// upright while the lens turns).
-struct ArthroscopeView
-{
-  Vector3 eye = Vector3::Zero();
-  Vector3 focalPoint = -Vector3::UnitZ();
-  Vector3 viewUp = Vector3::UnitX();
-};
-
-THINTISSUEHAPTICS_EXPORT ArthroscopeView arthroscopeView(const RigidPose& scope,
-  double viewingAngle = 30.0,
-  double focalDistance = 10.0,
-  const Vector3& worldUp = Vector3::UnitZ());
 
 } // namespace thintissue
 

@@ -3,6 +3,7 @@
 #include "HapticServo.h"
 #include "MouseHapticDevice.h"
 #include "OpenHapticsSystem.h"
+#include "PortalMapping.h"
 #include "ScriptedHapticDevice.h"
 #include "ServoThread.h"
 
