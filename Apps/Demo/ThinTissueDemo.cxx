@@ -8,6 +8,7 @@
 //                  [--timings out.json] [--size WxH]
 #include "MeniscusModel.h"
 #include "SurgicalInstruments.h"
+#include "VirtualDisplay.h"
 #include "vtkKneeSceneSource.h"
 #include "vtkMeniscusSource.h"
 #include "vtkSurgicalInstrumentSource.h"
@@ -41,8 +42,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 namespace
 {
@@ -124,34 +123,6 @@ bool parseArguments(int argc, char* argv[], Options& options)
     options.timings = options.screenshot.substr(0, options.screenshot.rfind('.')) + "-timings.json";
   }
   return true;
-}
-
-/// VTK renders through X11/GLX only. Without a display, run again inside a
-/// virtual X server (xvfb-run) when one is installed; returns only on failure.
-void reexecuteUnderVirtualDisplay(int argc, char* argv[])
-{
-  if (std::getenv("THINTISSUE_UNDER_XVFB") != nullptr)
-  {
-    return; // already tried: do not loop
-  }
-  setenv("THINTISSUE_UNDER_XVFB", "1", 1);
-  std::vector<char*> arguments;
-  std::string xvfb = "xvfb-run";
-  std::string automatic = "-a";
-  std::string serverFlag = "-s";
-  std::string screen = "-screen 0 1280x1024x24";
-  std::string offscreen = "--offscreen";
-  arguments.push_back(xvfb.data());
-  arguments.push_back(automatic.data());
-  arguments.push_back(serverFlag.data());
-  arguments.push_back(screen.data());
-  for (int i = 0; i < argc; ++i)
-  {
-    arguments.push_back(argv[i]);
-  }
-  arguments.push_back(offscreen.data());
-  arguments.push_back(nullptr);
-  execvp(arguments[0], arguments.data());
 }
 
 /// An opaque surface actor with a soft specular highlight.
@@ -251,7 +222,7 @@ int main(int argc, char* argv[])
   const char* display = std::getenv("DISPLAY");
   if (display == nullptr || display[0] == '\0')
   {
-    reexecuteUnderVirtualDisplay(argc, argv);
+    thintissue::apps::reexecuteUnderVirtualDisplay(argc, argv);
     std::cerr << "ThinTissueDemo: no X display and no working xvfb-run; install xvfb or run "
                  "with DISPLAY set\n";
     return 3;

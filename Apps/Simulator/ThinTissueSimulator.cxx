@@ -17,6 +17,7 @@
 // --replay plays back bit for bit.
 #include "SimulatorView.h"
 #include "SimulatorWindow.h"
+#include "VirtualDisplay.h"
 
 #include "MouseHapticDevice.h"
 #include "ScriptedHapticDevice.h"
@@ -42,8 +43,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 namespace
 {
@@ -141,29 +140,6 @@ bool parseArguments(int argc, char* argv[], Options& o)
     }
   }
   return true;
-}
-
-/// Re-runs the program under xvfb-run (offscreen) when there is no display.
-void reexecuteUnderVirtualDisplay(int argc, char* argv[])
-{
-  if (std::getenv("THINTISSUE_UNDER_XVFB") != nullptr)
-  {
-    return;
-  }
-  setenv("THINTISSUE_UNDER_XVFB", "1", 1);
-  std::vector<std::string> words = { "xvfb-run", "-a", "-s", "-screen 0 1280x1024x24" };
-  for (int i = 0; i < argc; ++i)
-  {
-    words.emplace_back(argv[i]);
-  }
-  words.emplace_back("--offscreen");
-  std::vector<char*> arguments;
-  for (std::string& w : words)
-  {
-    arguments.push_back(w.data());
-  }
-  arguments.push_back(nullptr);
-  execvp(arguments[0], arguments.data());
 }
 
 std::string snapshotName(const std::string& scenario, double t)
@@ -284,7 +260,7 @@ int main(int argc, char* argv[])
   const char* display = std::getenv("DISPLAY");
   if (display == nullptr || display[0] == '\0')
   {
-    reexecuteUnderVirtualDisplay(argc, argv);
+    thintissue::apps::reexecuteUnderVirtualDisplay(argc, argv);
     std::cerr << "ThinTissueSimulator: no X display and no working xvfb-run; install xvfb or run "
                  "with DISPLAY set\n";
     return 3;
