@@ -70,4 +70,15 @@ double medianSeconds(const std::function<void()>& work, int repetitions, bool wa
   return seconds[seconds.size() / 2];
 }
 
+double percentile(std::vector<double> values, double fraction)
+{
+  if (values.empty())
+  {
+    return 0.0;
+  }
+  std::sort(values.begin(), values.end());
+  const auto index = static_cast<std::size_t>(fraction * static_cast<double>(values.size()));
+  return values[std::min(values.size() - 1, index)];
+}
+
 } // namespace thintissue::bench

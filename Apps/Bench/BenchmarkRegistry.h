@@ -73,6 +73,10 @@ struct BenchmarkSuiteRegistration
 /// warm-up run when `warmUp`).
 double medianSeconds(const std::function<void()>& work, int repetitions, bool warmUp = true);
 
+/// The value below which `fraction` of `values` lie (1: the largest); 0 for
+/// none.
+double percentile(std::vector<double> values, double fraction);
+
 } // namespace thintissue::bench
 
 #endif

@@ -49,14 +49,6 @@ void publishContacts(HapticServo& servo, double time)
   servo.publishContactModel(1);
 }
 
-double percentile(std::vector<double> values, double fraction)
-{
-  std::sort(values.begin(), values.end());
-  const std::size_t i =
-    std::min(values.size() - 1, static_cast<std::size_t>(fraction * values.size()));
-  return values[i];
-}
-
 } // namespace
 
 THINTISSUE_BENCHMARK_SUITE(hapticsSuite,

@@ -15,12 +15,6 @@ namespace
 using namespace thintissue;
 using namespace thintissue::bench;
 
-double percentile(std::vector<double> values, double fraction)
-{
-  std::sort(values.begin(), values.end());
-  return values[std::min(values.size() - 1, static_cast<std::size_t>(fraction * values.size()))];
-}
-
 } // namespace
 
 THINTISSUE_BENCHMARK_SUITE(simulatorSuite,
