@@ -233,6 +233,54 @@ int runOffscreen(TrainingScene& scene, const Options& o)
   return matches ? 0 : 1;
 }
 
+/// The session's two styluses: the recording's, or the mouse's. With
+/// --record they are wrapped in recorders (and only then: a recorder hands
+/// the run the orientation as it stores it, so that its replay is exact).
+class SessionDevices
+{
+public:
+  SessionDevices(const SceneRecording& recording, const Options& options)
+    : Mouse(options.mouse)
+    , Recording(!options.record.empty())
+    , ScriptedScope(recording.scope)
+    , ScriptedInstrument(recording.instrument)
+    , ScopeRecorder(live(ScriptedScope, MouseScope), Recording ? FiveMinutes : 0)
+    , InstrumentRecorder(live(ScriptedInstrument, MouseInstrument), Recording ? FiveMinutes : 0)
+  {
+  }
+  HapticDevice& scope() { return Recording ? ScopeRecorder : live(ScriptedScope, MouseScope); }
+  HapticDevice& instrument()
+  {
+    return Recording ? InstrumentRecorder : live(ScriptedInstrument, MouseInstrument);
+  }
+  /// For the window's mouse and keyboard; null when replaying.
+  MouseHapticDevice* mouseScope() { return Mouse ? &MouseScope : nullptr; }
+  MouseHapticDevice* mouseInstrument() { return Mouse ? &MouseInstrument : nullptr; }
+  SceneRecording recorded(const std::string& scenario) const
+  {
+    return SceneRecording{ std::filesystem::absolute(scenario).string(),
+      0,
+      ScopeRecorder.trajectory(),
+      InstrumentRecorder.trajectory() };
+  }
+
+private:
+  static constexpr std::size_t FiveMinutes = 300000; // samples at 1 kHz
+  HapticDevice& live(ScriptedHapticDevice& scripted, MouseHapticDevice& mouse)
+  {
+    return Mouse ? static_cast<HapticDevice&>(mouse) : scripted;
+  }
+
+  bool Mouse;
+  bool Recording;
+  ScriptedHapticDevice ScriptedScope;
+  ScriptedHapticDevice ScriptedInstrument;
+  MouseHapticDevice MouseScope;
+  MouseHapticDevice MouseInstrument;
+  RecordingHapticDevice ScopeRecorder;
+  RecordingHapticDevice InstrumentRecorder;
+};
+
 int runWindow(TrainingScene& scene,
   MouseHapticDevice* scope,
   MouseHapticDevice* instrument,
@@ -270,39 +318,25 @@ int main(int argc, char* argv[])
     const SceneRecording recording = readSceneRecording(options.replay);
     const ScenarioDescription scenario =
       readScenario(options.scenario.empty() ? recording.scenario : options.scenario);
-    ScriptedHapticDevice scriptedScope(recording.scope);
-    ScriptedHapticDevice scriptedInstrument(recording.instrument);
-    MouseHapticDevice mouseScope, mouseInstrument;
-    HapticDevice& liveScope =
-      options.mouse ? static_cast<HapticDevice&>(mouseScope) : scriptedScope;
-    HapticDevice& liveInstrument =
-      options.mouse ? static_cast<HapticDevice&>(mouseInstrument) : scriptedInstrument;
-    // Five minutes at 1 kHz when recording, nothing otherwise.
-    const std::size_t capacity = options.record.empty() ? 0 : 300000;
-    RecordingHapticDevice scope(liveScope, capacity), instrument(liveInstrument, capacity);
-    TrainingScene scene(scenario, scope, instrument);
-    const auto writeRecording = [&]
-    {
-      if (!options.record.empty())
-      {
-        writeSceneRecording(options.record,
-          SceneRecording{ std::filesystem::absolute(scenario.source).string(),
-            0,
-            scope.trajectory(),
-            instrument.trajectory() });
-        std::cout << "recording written to " << options.record << "\n";
-      }
-    };
+    SessionDevices devices(recording, options);
+    TrainingScene scene(scenario, devices.scope(), devices.instrument());
     std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << "), "
               << (options.mouse ? "mouse and keyboard" : "recording " + options.replay) << "\n";
     // Another scenario, chosen in the window, with the same devices.
     const SimulatorWindow::SceneFactory factory = [&](const std::string& path)
-    { return std::make_unique<TrainingScene>(readScenario(path), scope, instrument); };
-    const int status = options.offscreen ? runOffscreen(scene, options)
-                       : options.mouse
-                         ? runWindow(scene, &mouseScope, &mouseInstrument, factory, argc, argv)
-                         : runWindow(scene, nullptr, nullptr, factory, argc, argv);
-    writeRecording();
+    {
+      return std::make_unique<TrainingScene>(
+        readScenario(path), devices.scope(), devices.instrument());
+    };
+    const int status =
+      options.offscreen
+        ? runOffscreen(scene, options)
+        : runWindow(scene, devices.mouseScope(), devices.mouseInstrument(), factory, argc, argv);
+    if (!options.record.empty())
+    {
+      writeSceneRecording(options.record, devices.recorded(scenario.source));
+      std::cout << "recording written to " << options.record << "\n";
+    }
     return status;
   }
   catch (const Error& error)
