@@ -68,6 +68,7 @@ SimulatorView::SimulatorView(const TrainingScene& scene)
   Renderer->SetBackground(0.12, 0.03, 0.02);
   addKnee();
   Tissue = withNormals(scene.tissue().visual);
+  Shading.triangles = scene.tissue().visual.triangles;
   Renderer->AddActor(surfaceActor(Tissue, { 0.96, 0.93, 0.88 }, true));
   Instrument =
     surfaceActor(withNormals(scene.instrumentModel().visual), { 0.78, 0.80, 0.84 }, false);
@@ -188,7 +189,8 @@ void SimulatorView::update()
     }
   }
   // The tissue where the scene put it (with its wrinkles), normals again.
-  TriangleMesh moved = Scene.tissue().visual;
+  // (Shading only: positions and triangles, kept from frame to frame.)
+  TriangleMesh& moved = Shading;
   moved.positions = Scene.visualPositions();
   moved.computeVertexNormals();
   vtkPoints* points = Tissue->GetPoints();

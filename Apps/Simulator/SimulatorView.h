@@ -43,6 +43,7 @@ private:
   const TrainingScene& Scene;
   vtkSmartPointer<vtkRenderer> Renderer;
   vtkSmartPointer<vtkPolyData> Tissue;
+  TriangleMesh Shading; ///< the tissue's triangles, for its normals each frame
   vtkSmartPointer<vtkActor> Instrument;
   vtkSmartPointer<vtkPolyData> Ring;
   vtkSmartPointer<vtkRenderer> Overview;
