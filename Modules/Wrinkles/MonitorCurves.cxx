@@ -242,20 +242,4 @@ std::vector<WrinkleDataCurve> wrinkleDataCurves(const std::vector<MonitorCurve>&
   return data;
 }
 
-std::vector<WrinkleDataCurve> monitorCurvesOf(const MonitorPointSet& set)
-{
-  std::vector<WrinkleDataCurve> curves(set.curveCount());
-  for (std::size_t c = 0; c < set.curveCount(); ++c)
-  {
-    curves[c].name = "curve " + std::to_string(c);
-    for (int i = set.curveStarts[c]; i < set.curveStarts[c + 1]; ++i)
-    {
-      curves[c].monitorPoints.push_back(set.monitorPoints[i]);
-      curves[c].regionPoints.push_back(set.regionPoints[i]);
-      curves[c].thickness.push_back(set.thickness[i]);
-    }
-  }
-  return curves;
-}
-
 } // namespace thintissue

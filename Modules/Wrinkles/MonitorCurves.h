@@ -80,9 +80,6 @@ THINTISSUEWRINKLES_EXPORT MonitorPointSet resampleMonitorCurves(
 THINTISSUEWRINKLES_EXPORT std::vector<WrinkleDataCurve> wrinkleDataCurves(
   const std::vector<MonitorCurve>& curves);
 
-/// The curves as data (one WrinkleDataCurve per curve of the set).
-THINTISSUEWRINKLES_EXPORT std::vector<WrinkleDataCurve> monitorCurvesOf(const MonitorPointSet& set);
-
 } // namespace thintissue
 
 #endif

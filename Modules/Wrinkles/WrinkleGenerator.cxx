@@ -100,19 +100,6 @@ void WrinkleGenerator::setParameters(const WrinkleParameters& parameters)
   Parameters = parameters;
 }
 
-void WrinkleGenerator::reset()
-{
-  HasPrevious = false;
-  NeedWrinkles = false;
-  Reference.clear();
-  for (const int j : Displaced)
-  {
-    SlotOfPoint[j] = -1;
-  }
-  Displaced.clear();
-  Displacements.clear();
-}
-
 void WrinkleGenerator::update(const std::vector<Vector3>& nodePositions,
   const WrinkleContactState& contacts)
 {

@@ -125,8 +125,6 @@ public:
   /// One step (items 1-4 of the file comment) from the hexahedra's current
   /// node positions. No allocation after the first step.
   void update(const std::vector<Vector3>& nodePositions, const WrinkleContactState& contacts);
-  /// Forgets the reference and the previous monitor points.
-  void reset();
 
   /// Adds the wrinkle displacement to the displaced points of `positions`
   /// (the surface as the embedding placed it this step).

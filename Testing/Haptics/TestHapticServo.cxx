@@ -292,3 +292,33 @@ TEST(HapticServo, ReplaysAreDeterministicAndTheThreadTicks)
   EXPECT_GE(thread.periods().size(), 20u);
   EXPECT_EQ(device.forces().size(), servo.latestToolState(0).tick);
 }
+
+TEST(HapticServo, EnablingASlotRampsItsForceInAgain)
+{
+  ScriptedHapticDevice device(stillAt(Vector3::Zero()));
+  ForceSafetySettings settings = noRamp();
+  settings.rampIn = 0.1;
+  HapticServo servo({ HapticSlot{ &device, PortalSettings{}, true } }, settings);
+  // Physics publishes every 10 ms (the model stays fresh).
+  const auto tick = [&](int k)
+  {
+    if (k % 10 == 0)
+    {
+      publishPush(servo, 0, 0.001 * k, 20.0, 0.1); // 2 N asked
+    }
+    servo.tick(0.001 * k);
+  };
+  for (int k = 0; k <= 200; ++k)
+  {
+    tick(k);
+  }
+  EXPECT_NEAR(device.forces().back().norm(), 0.88, 1e-12); // ramped in
+  servo.enable(0, 0.2);
+  tick(201);
+  EXPECT_NEAR(device.forces().back().norm(), 0.02, 1e-9); // 1 ms of a 100 ms ramp
+  for (int k = 202; k <= 320; ++k)
+  {
+    tick(k);
+  }
+  EXPECT_NEAR(device.forces().back().norm(), 0.88, 1e-12);
+}
