@@ -9,7 +9,9 @@
 #include "ThinSheetModel.h"
 #include "ThinTissueError.h"
 #include "ThinTissueTestSupport.h"
+#include "TissueBundle.h"
 #include "TriangleMeshAdjacency.h"
+#include "WrinkleGenerator.h"
 #include "WrinkleTestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -235,4 +237,32 @@ TEST(AutomaticMonitorCurves, OnAPreparedMeniscusTheInnerRimAndOnTheSteakItsThinn
   EXPECT_GE(chosenCount, 20u);
   std::cout << "steak: mean border radius " << steakBorder << ", chosen " << steakChosen << " in "
             << steakCurves.size() << " curves\n";
+}
+
+TEST(AutomaticMonitorCurves, OnTheRealMriMenisciTheirThinBorder)
+{
+  // ../shared/data/knee-smith2019 (segmented from MRI, in metres): prepared
+  // as a user would, the monitor points come from the thin border alone and
+  // a wrinkle generator is built on them.
+  const std::string data = thintissue::testing::sharedDataDirectory() + "/knee-smith2019/";
+  if (!std::filesystem::exists(data + "smith2019-R-medial-meniscus.stl"))
+  {
+    GTEST_SKIP() << "../shared/data/knee-smith2019 not present";
+  }
+  for (const char* file : { "smith2019-R-medial-meniscus.stl", "smith2019-R-lateral-meniscus.stl" })
+  {
+    SCOPED_TRACE(file);
+    const TissueBundle bundle = prepareTissue(readTriangleMesh(data + file));
+    const std::vector<double>& radii = bundle.collision.pointAttributes.get("Radius").values;
+    const auto curves = deriveWrinkleDataCurves(bundle.collision, radii);
+    ASSERT_FALSE(curves.empty());
+    const auto [border, chosen] = meanBorderAndChosenRadius(bundle.collision, radii, curves);
+    EXPECT_LT(chosen, 0.5 * border);
+    const double extent = bundle.collision.boundingBox().sizes().maxCoeff();
+    const MonitorPointSet monitors = resampleMonitorCurves(curves, extent / 300.0, file);
+    EXPECT_GT(monitors.size(), 100u);
+    const WrinkleGenerator generator(monitors, bundle.simulation, bundle.visual);
+    EXPECT_GT(generator.influence().affectedPoints().size(), 50u);
+    EXPECT_LT(generator.influence().affectedPoints().size(), bundle.visual.vertexCount() / 2);
+  }
 }
