@@ -3,23 +3,51 @@
 #include "ContactKernels.h"
 #include "ThinTissueError.h"
 
+#include <string>
+#include <utility>
+
 namespace thintissue
 {
+
+namespace
+{
+
+std::vector<double> radiiOf(const TriangleMesh& collision)
+{
+  return collision.pointAttributes.has("Radius")
+           ? collision.pointAttributes.get("Radius").values
+           : std::vector<double>(collision.vertexCount(), 0.0);
+}
+
+} // namespace
 
 DeformableCollisionMesh::DeformableCollisionMesh(const TriangleMesh& collision,
   const HexahedralMesh& hexahedra,
   double contactDistance)
+  : DeformableCollisionMesh(collision,
+      HexahedralEmbedding(hexahedra, collision.positions),
+      contactDistance)
+{
+}
+
+DeformableCollisionMesh::DeformableCollisionMesh(const TriangleMesh& collision,
+  HexahedralEmbedding embedding,
+  double contactDistance)
   : Triangles(collision.triangles)
-  , Radii(collision.pointAttributes.has("Radius")
-            ? collision.pointAttributes.get("Radius").values
-            : std::vector<double>(collision.vertexCount(), 0.0))
-  , Embedding(hexahedra, collision.positions)
+  , Radii(radiiOf(collision))
+  , Embedding(std::move(embedding))
   , Positions(collision.positions)
   , ContactDistance(contactDistance)
 {
   if (!(contactDistance >= 0.0))
   {
     throw InvalidInputError("collision mesh '" + collision.name + "': negative contact distance");
+  }
+  if (Embedding.pointCount() != Positions.size())
+  {
+    throw InvalidInputError(
+      "collision mesh '" + collision.name + "': " + std::to_string(Positions.size()) +
+      " vertices but an embedding of " + std::to_string(Embedding.pointCount()) + " points");
   }
   Bvh.build(Positions, Triangles, Radii, ContactDistance);
   VertexNormals.resize(Positions.size());

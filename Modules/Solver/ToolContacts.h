@@ -50,6 +50,14 @@ public:
   DeformableCollisionMesh(const TriangleMesh& collision,
     const HexahedralMesh& hexahedra,
     double contactDistance = 0.0);
+  /// The same from an embedding made elsewhere (a tissue being cut keeps
+  /// its collision vertices in the hexahedron copy holding their branch,
+  /// which a nearest-hexahedron search cannot tell from the original: they
+  /// share their rest geometry). `embedding` has one point per vertex of
+  /// `collision`, whose positions are its current ones.
+  DeformableCollisionMesh(const TriangleMesh& collision,
+    HexahedralEmbedding embedding,
+    double contactDistance = 0.0);
   /// x = H u, then a BVH refit and the vertex normals. No allocation.
   void update(const std::vector<Vector3>& nodePositions);
   /// Area-weighted (unnormalised) vertex normals of the current positions.

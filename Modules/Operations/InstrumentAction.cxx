@@ -1,0 +1,235 @@
+#include "InstrumentAction.h"
+
+#include "ThinTissueError.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace thintissue
+{
+
+namespace
+{
+
+constexpr double DegreesToRadians = M_PI / 180.0;
+
+void requireFeature(const SurgicalInstrumentModel& model, bool present, const char* feature)
+{
+  if (!present)
+  {
+    throw InvalidInputError(
+      "instrument '" + model.name + "': its model has no " + feature + ", which it needs to cut");
+  }
+}
+
+void checkSettings(const SurgicalInstrumentModel& model, const InstrumentActionSettings& s)
+{
+  const bool good =
+    s.closedJawOpening >= 0.0 && s.closedJawOpening < 1.0 && s.biteDepthBelowJaw >= 0.0 &&
+    s.scissorsHalfHeight > 0.0 && s.shaverReach > 0.0 && s.shaverBitePeriod >= 0.0 &&
+    std::isfinite(s.biteDepthBelowJaw + s.scissorsHalfHeight + s.shaverReach + s.shaverBitePeriod);
+  if (!good)
+  {
+    throw InvalidInputError("instrument '" + model.name +
+                            "': action settings out of range (closed jaw opening in [0, 1), "
+                            "depths and reach positive and finite)");
+  }
+}
+
+/// The outline moved by `pose` and offset by `offset` (tool frame) first.
+std::vector<Vector3> placedOutline(const std::vector<Vector3>& outline,
+  const RigidPose& pose,
+  const Vector3& offset)
+{
+  std::vector<Vector3> placed;
+  placed.reserve(outline.size());
+  for (const Vector3& p : outline)
+  {
+    placed.push_back(pose * (p + offset));
+  }
+  return placed;
+}
+
+/// Twice the area of the quad swept by the segment (a, b) from `before` to
+/// `now`, roughly: zero when the edge did not move across itself.
+double sweptArea(const Vector3& a0, const Vector3& b0, const Vector3& a1, const Vector3& b1)
+{
+  return (b0 - a0).cross(a1 - a0).norm() + (b1 - a1).cross(b0 - a1).norm();
+}
+
+double signedVolume(const std::vector<Vector3>& positions, const std::vector<Triangle>& triangles)
+{
+  double volume = 0.0;
+  for (const Triangle& t : triangles)
+  {
+    volume += positions[t[0]].dot(positions[t[1]].cross(positions[t[2]]));
+  }
+  return volume / 6.0;
+}
+
+} // namespace
+
+bool instrumentCuts(SurgicalInstrumentType type)
+{
+  return type != SurgicalInstrumentType::ProbeHook;
+}
+
+InstrumentAction::InstrumentAction(const SurgicalInstrumentModel& model,
+  const InstrumentActionSettings& settings)
+  : Model(model)
+  , Settings(settings)
+{
+  checkSettings(model, settings);
+  switch (model.type)
+  {
+    case SurgicalInstrumentType::Punch:
+    case SurgicalInstrumentType::SmallShaver:
+    case SurgicalInstrumentType::LargeShaver:
+      requireFeature(model, model.biteOutline.size() >= 3, "bite outline");
+      break;
+    case SurgicalInstrumentType::Scissors:
+    case SurgicalInstrumentType::Scalpel:
+      requireFeature(model, model.cuttingEdge.size() >= 2, "cutting edge");
+      break;
+    case SurgicalInstrumentType::ProbeHook:
+      break;
+  }
+}
+
+Blade InstrumentAction::punchBite(const RigidPose& pose) const
+{
+  // The tissue between the jaws: from just below the fixed jaw's face (the
+  // outline's plane, x = 0) up to the open moving jaw.
+  const SurgicalInstrumentParameters& p = Model.parameters;
+  const double open = p.biteLength * std::sin(p.jawOpeningDegrees * DegreesToRadians);
+  const Vector3 up = Vector3::UnitX();
+  return Blade::sweptOutline(
+    placedOutline(Model.biteOutline, pose, -Settings.biteDepthBelowJaw * up),
+    placedOutline(Model.biteOutline, pose, (open + p.jawThickness) * up));
+}
+
+Blade InstrumentAction::shaverBite(const RigidPose& pose) const
+{
+  const Vector3 reach = Settings.shaverReach * Vector3::UnitX();
+  return Blade::sweptOutline(
+    placedOutline(Model.biteOutline, pose, -reach), placedOutline(Model.biteOutline, pose, reach));
+}
+
+Blade InstrumentAction::scissorsStroke(const InstrumentCommand& command) const
+{
+  // The fixed blade's edge runs from its point to the hinge. The blades
+  // turn about the hinge's pin (the tool's side axis): passing the pin axis
+  // as ScissorsPose::opening extrudes the closed middle line across the
+  // blades' own plane, through the tissue held between them.
+  const double maximum = Model.parameters.jawOpeningDegrees * DegreesToRadians;
+  auto poseAt = [&](const InstrumentCommand& c)
+  {
+    ScissorsPose s;
+    s.pivot = c.pose * Model.cuttingEdge.back();
+    const Vector3 tip = c.pose * Model.cuttingEdge.front();
+    s.direction = (tip - s.pivot).normalized();
+    s.length = (tip - s.pivot).norm();
+    s.opening = c.pose.rotation * Vector3::UnitY();
+    s.maximumOpeningAngle = maximum;
+    s.openingAngle = std::clamp(c.jawOpening, 0.0, 1.0) * maximum;
+    s.halfHeight = Settings.scissorsHalfHeight;
+    return s;
+  };
+  return scissorsBlade(poseAt(Previous), poseAt(command));
+}
+
+Blade InstrumentAction::scalpelStroke(const InstrumentCommand& command) const
+{
+  const Vector3& point = Model.cuttingEdge.front();
+  const Vector3& heel = Model.cuttingEdge.back();
+  const Vector3 a0 = Previous.pose * point, b0 = Previous.pose * heel;
+  const Vector3 a1 = command.pose * point, b1 = command.pose * heel;
+  // An edge that did not sweep any area this step cuts nothing.
+  if (sweptArea(a0, b0, a1, b1) <= 1e-9 * (b0 - a0).squaredNorm())
+  {
+    return {};
+  }
+  return Blade::sweptSegment(a0, b0, a1, b1);
+}
+
+bool InstrumentAction::jawsJustClosed(const InstrumentCommand& command) const
+{
+  return Previous.jawOpening > Settings.closedJawOpening &&
+         command.jawOpening <= Settings.closedJawOpening;
+}
+
+Blade InstrumentAction::bladeFor(const InstrumentCommand& command, OperationKind& kind)
+{
+  kind = OperationKind::None;
+  switch (Model.type)
+  {
+    case SurgicalInstrumentType::Punch:
+      if (!jawsJustClosed(command))
+        return {};
+      kind = OperationKind::Bite;
+      return punchBite(command.pose);
+    case SurgicalInstrumentType::Scissors:
+      if (command.jawOpening >= Previous.jawOpening)
+        return {};
+      kind = OperationKind::Cut;
+      return scissorsStroke(command);
+    case SurgicalInstrumentType::Scalpel:
+      if (!command.working || !Previous.working)
+        return {};
+      kind = OperationKind::Cut;
+      return scalpelStroke(command);
+    case SurgicalInstrumentType::SmallShaver:
+    case SurgicalInstrumentType::LargeShaver:
+      if (!command.working || command.time - LastShave < Settings.shaverBitePeriod)
+        return {};
+      LastShave = command.time;
+      kind = OperationKind::Shave;
+      return shaverBite(command.pose);
+    case SurgicalInstrumentType::ProbeHook:
+      break;
+  }
+  return {};
+}
+
+InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
+  const InstrumentCommand& command)
+{
+  InstrumentActionResult result;
+  if (!HasPrevious)
+  {
+    Previous = command;
+    HasPrevious = true;
+    return result;
+  }
+  const Blade blade = bladeFor(command, result.kind);
+  Previous = command;
+  if (blade.empty())
+  {
+    result.kind = OperationKind::None;
+    return result;
+  }
+  try
+  {
+    result.report = cutter.cut(blade);
+  }
+  catch (const InvalidInputError& error)
+  {
+    // A blade the cutter refuses leaves the tissue as it was.
+    result.refused = error.what();
+    result.kind = OperationKind::None;
+    return result;
+  }
+  for (const TissuePiece& piece : result.report.handedOver)
+  {
+    result.removedVolume += restVolume(piece);
+  }
+  Operations += result.report.changed() ? 1 : 0;
+  return result;
+}
+
+double restVolume(const TissuePiece& piece)
+{
+  return std::abs(signedVolume(piece.visualRest, piece.visual.triangles));
+}
+
+} // namespace thintissue

@@ -1,0 +1,138 @@
+// What each arthroscopic instrument does to a tissue being cut (thesis 6.4),
+// behind one entry point the simulator calls once per physics step with the
+// instrument's pose, its jaw opening and whether it is working:
+//
+//  - probe hook: palpates only (its contacts are the collision scene's);
+//  - basket punch (6.4.2): when its jaws close, the bite outline of the
+//    fixed jaw, extruded across the jaws' gap, cuts a loop through the
+//    tissue, and the bitten piece, attached to nothing, is removed at once
+//    (one bite = one cut + removal, by the cutter's free-piece handling);
+//  - scissors: where the blades close on each other the tissue is cut
+//    (scissorsBlade, from the pose before to the pose now);
+//  - scalpel: while engaged, its straight cutting edge cuts along the
+//    surface it sweeps from one step to the next;
+//  - shavers (6.4.3, piecewise removal): while the motor runs and tissue
+//    lies in front of the window, the window outline extruded across the
+//    tissue cuts the tissue in reach loose, and it is removed -- one bite
+//    per `shaverBitePeriod`, as the inner cutter does.
+//
+// The blades are built from the instrument model's working features
+// (SurgicalInstruments.h: biteOutline, cuttingEdge), moved by the pose; the
+// cut itself is TissueCutter::cut (5.3), so every operation keeps the
+// cutter's invariants (closed visual mesh with cut surfaces, pieces that
+// share no node).
+#ifndef InstrumentAction_h
+#define InstrumentAction_h
+
+#include "RigidTool.h"
+#include "SurgicalInstruments.h"
+#include "ThinTissueOperationsModule.h"
+#include "TissueCutter.h"
+
+#include <string>
+
+namespace thintissue
+{
+
+/// The instrument's state at one physics step.
+struct InstrumentCommand
+{
+  double time = 0.0; ///< seconds
+  /// Tool frame (SurgicalInstruments.h) to world.
+  RigidPose pose;
+  /// Punch and scissors: 1 = open as built (the model's jawOpeningDegrees),
+  /// 0 = closed.
+  double jawOpening = 1.0;
+  /// Scalpel: the edge is engaged; shavers: the motor runs.
+  bool working = false;
+};
+
+enum class OperationKind
+{
+  None,  ///< nothing this step
+  Cut,   ///< scissors or scalpel stroke
+  Bite,  ///< punch bite
+  Shave, ///< shaver bite
+};
+
+/// What one step of an instrument did.
+struct InstrumentActionResult
+{
+  OperationKind kind = OperationKind::None;
+  /// The cut, when one was made (kind != None).
+  TissueCutReport report;
+  /// Rest volume (mm^3) of the pieces this step removed, from their closed
+  /// visual surfaces (0 when the cutter has no visual mesh or keeps its
+  /// free pieces).
+  double removedVolume = 0.0;
+  /// Set when the cutter refused the blade (a tool that did not move, say):
+  /// the tissue is untouched.
+  std::string refused;
+  bool changed() const { return kind != OperationKind::None && report.changed(); }
+};
+
+struct InstrumentActionSettings
+{
+  /// Jaws at or below this opening count as closed (punch, scissors).
+  double closedJawOpening = 0.05;
+  /// How far the punch's cut reaches below the fixed jaw's face (mm): the
+  /// tissue resting on the jaw is cut through.
+  double biteDepthBelowJaw = 0.5;
+  /// How far the scissors' cut reaches either side of the blades' middle
+  /// line, across the tissue between them (mm).
+  double scissorsHalfHeight = 3.0;
+  /// Shavers: how far in front of and behind the window the inner cutter
+  /// reaches (mm), and seconds between two bites.
+  double shaverReach = 1.0;
+  double shaverBitePeriod = 0.05;
+};
+
+/// Whether an instrument of this type can change a tissue (all but the
+/// probe hook).
+THINTISSUEOPERATIONS_EXPORT bool instrumentCuts(SurgicalInstrumentType type);
+
+class THINTISSUEOPERATIONS_EXPORT InstrumentAction
+{
+public:
+  /// `model`: the instrument as built, in its tool frame. Throws
+  /// InvalidInputError naming the instrument when it lacks the working
+  /// feature its type needs, or on bad settings.
+  explicit InstrumentAction(const SurgicalInstrumentModel& model,
+    const InstrumentActionSettings& settings = {});
+
+  /// One physics step: compares `command` with the previous one and cuts
+  /// `cutter`'s tissue as the instrument does. The first call only records
+  /// the state (nothing sweeps from nowhere).
+  InstrumentActionResult apply(TissueCutter& cutter, const InstrumentCommand& command);
+
+  const SurgicalInstrumentModel& instrument() const { return Model; }
+  /// Bites and strokes that changed the tissue so far.
+  int operations() const { return Operations; }
+
+  /// The punch's bite at `pose`: its outline on the fixed jaw's face swept
+  /// from below the jaw to the open moving jaw (for tests and drawing).
+  Blade punchBite(const RigidPose& pose) const;
+  /// The shaver's bite at `pose`: its window outline swept through the
+  /// window's plane, `shaverReach` either side.
+  Blade shaverBite(const RigidPose& pose) const;
+
+private:
+  Blade bladeFor(const InstrumentCommand& command, OperationKind& kind);
+  Blade scissorsStroke(const InstrumentCommand& command) const;
+  Blade scalpelStroke(const InstrumentCommand& command) const;
+  bool jawsJustClosed(const InstrumentCommand& command) const;
+
+  SurgicalInstrumentModel Model;
+  InstrumentActionSettings Settings;
+  InstrumentCommand Previous;
+  bool HasPrevious = false;
+  double LastShave = -1.0e300;
+  int Operations = 0;
+};
+
+/// Rest volume enclosed by a removed piece's closed visual surface (mm^3).
+THINTISSUEOPERATIONS_EXPORT double restVolume(const TissuePiece& piece);
+
+} // namespace thintissue
+
+#endif
