@@ -67,9 +67,9 @@ SimulatorView::SimulatorView(const TrainingScene& scene)
   // Synovial red-brown beyond the lit tissue.
   Renderer->SetBackground(0.12, 0.03, 0.02);
   addKnee();
-  Tissue = withNormals(scene.tissue().visual);
-  Shading.triangles = scene.tissue().visual.triangles;
   Renderer->AddActor(surfaceActor(Tissue, { 0.96, 0.93, 0.88 }, true));
+  // The cut surfaces (5.3.4): the tissue's inside, pinker and less shiny.
+  Renderer->AddActor(surfaceActor(CutSurface, { 0.93, 0.78, 0.74 }, false));
   Instrument =
     surfaceActor(withNormals(scene.instrumentModel().visual), { 0.78, 0.80, 0.84 }, false);
   Instrument->GetProperty()->SetSpecular(0.9);
@@ -188,8 +188,15 @@ void SimulatorView::update()
       placeRing(aspect);
     }
   }
-  // The tissue where the scene put it (with its wrinkles), normals again.
-  // (Shading only: positions and triangles, kept from frame to frame.)
+  if (Scene.topologyVersion() != TopologyVersion)
+  {
+    rebuildTissue();
+  }
+  // The tissue where the scene put it (with its wrinkles). Normals: the
+  // rest normals the mesh carries (interpolated from the model's, smooth)
+  // turned by how the normals computed from the positions changed since
+  // rest; computed normals alone streak along the binding's re-meshed
+  // slivers, and their change still shows the wrinkles and the bending.
   TriangleMesh& moved = Shading;
   moved.positions = Scene.visualPositions();
   moved.computeVertexNormals();
@@ -198,17 +205,14 @@ void SimulatorView::update()
   for (std::size_t i = 0; i < moved.positions.size(); ++i)
   {
     points->SetPoint(static_cast<vtkIdType>(i), moved.positions[i].data());
-    if (normals)
-    {
-      normals->SetTuple(static_cast<vtkIdType>(i), moved.normals[i].data());
-    }
+    const Vector3 normal =
+      (RestNormals[i] + moved.normals[i] - ComputedRestNormals[i]).normalized();
+    normals->SetTuple(static_cast<vtkIdType>(i), normal.data());
   }
   points->Modified();
-  if (normals)
-  {
-    normals->Modified();
-  }
+  normals->Modified();
   Tissue->Modified();
+  CutSurface->Modified();
   const RigidPose& tool = Scene.instrumentPose();
   vtkNew<vtkMatrix4x4> matrix;
   for (int r = 0; r < 3; ++r)
@@ -237,6 +241,65 @@ void SimulatorView::update()
     ScopeShaft->GetPoints()->Modified();
     Overview->ResetCameraClippingRange();
   }
+}
+
+void SimulatorView::rebuildTissue()
+{
+  // After a cut: the visual mesh's vertices, its triangles still in the
+  // tissue (removed pieces are not drawn), split into the outer surface and
+  // the cut surfaces, both on one point set and one normal array.
+  const TriangleMesh& mesh = Scene.visualMesh();
+  const std::vector<char> active = Scene.activeVisualTriangles();
+  const std::vector<VisualMaterial>* materials =
+    Scene.cutter() ? &Scene.cutter()->visual().triangleMaterials() : nullptr;
+  const auto count = static_cast<vtkIdType>(mesh.vertexCount());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(count);
+  vtkNew<vtkDoubleArray> normals;
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(count);
+  vtkNew<vtkCellArray> outer;
+  vtkNew<vtkCellArray> inner;
+  Shading.triangles.clear();
+  std::vector<char> onCutSurface(mesh.vertexCount(), 0);
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    if (!active[t])
+    {
+      continue;
+    }
+    const Triangle& corners = mesh.triangles[t];
+    Shading.triangles.push_back(corners);
+    const vtkIdType ids[3] = { corners[0], corners[1], corners[2] };
+    const bool cut = materials && (*materials)[t] == VisualMaterial::CutSurface;
+    (cut ? inner : outer)->InsertNextCell(3, ids);
+    for (int v : corners)
+    {
+      onCutSurface[v] = onCutSurface[v] || cut;
+    }
+  }
+  for (vtkPolyData* part : { Tissue.GetPointer(), CutSurface.GetPointer() })
+  {
+    part->Initialize();
+    part->SetPoints(points);
+    part->GetPointData()->SetNormals(normals);
+  }
+  Tissue->SetPolys(outer);
+  CutSurface->SetPolys(inner);
+  Shading.positions = mesh.positions;
+  Shading.computeVertexNormals();
+  ComputedRestNormals = Shading.normals;
+  RestNormals = mesh.normals.size() == mesh.vertexCount() ? mesh.normals : Shading.normals;
+  for (std::size_t v = 0; v < onCutSurface.size(); ++v)
+  {
+    // The cut surface's rest normals are its lips' (not across the cut).
+    if (onCutSurface[v])
+    {
+      RestNormals[v] = ComputedRestNormals[v];
+    }
+  }
+  TopologyVersion = Scene.topologyVersion();
 }
 
 void SimulatorView::writePicture(vtkRenderWindow* window, const std::string& path)

@@ -36,14 +36,23 @@ public:
 
 private:
   void addKnee();
+  void rebuildTissue();
   void addRoundFieldOfView();
   void placeRing(double aspect);
   static constexpr int RingSegments = 96;
 
   const TrainingScene& Scene;
   vtkSmartPointer<vtkRenderer> Renderer;
-  vtkSmartPointer<vtkPolyData> Tissue;
-  TriangleMesh Shading; ///< the tissue's triangles, for its normals each frame
+  /// The tissue's outer surface and its cut surfaces (one point set), as
+  /// of the scene's topology version.
+  vtkSmartPointer<vtkPolyData> Tissue = vtkSmartPointer<vtkPolyData>::New();
+  vtkSmartPointer<vtkPolyData> CutSurface = vtkSmartPointer<vtkPolyData>::New();
+  int TopologyVersion = -1;
+  TriangleMesh Shading; ///< the tissue's drawn triangles, for its normals each frame
+  /// Per visual vertex: its rest normal (the mesh's) and the normal
+  /// computed from its rest positions.
+  std::vector<Vector3> RestNormals;
+  std::vector<Vector3> ComputedRestNormals;
   vtkSmartPointer<vtkActor> Instrument;
   vtkSmartPointer<vtkPolyData> Ring;
   vtkSmartPointer<vtkRenderer> Overview;

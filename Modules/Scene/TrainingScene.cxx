@@ -2,6 +2,7 @@
 
 #include "LocalContactModel.h"
 #include "ThinTissueError.h"
+#include "VisualCollisionBinding.h"
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +22,10 @@ PortalSettings portalOf(const PortalDescription& p)
   return s;
 }
 
+/// Seconds the punch's or the scissors' jaws take to close fully (and to
+/// open again) while the stylus's first button is held (released).
+constexpr double JawTravelTime = 0.1;
+
 } // namespace
 
 TrainingScene::TrainingScene(const ScenarioDescription& scenario,
@@ -35,6 +40,13 @@ TrainingScene::TrainingScene(const ScenarioDescription& scenario,
   Instrument = makeSurgicalInstrument(scenario.instrument);
   for (const auto& segment : Instrument.centreLine)
   {
+    // A cutting instrument's jaws and blades close around the tissue they
+    // cut: only its shaft pushes tissue (the capsules containing the jaws
+    // would squeeze the tissue held between them).
+    if (instrumentCuts(scenario.instrument) && segment.part != "shaft")
+    {
+      continue;
+    }
     Tool.addCapsule(segment.end, segment.start, segment.radius);
   }
   buildTissue();
@@ -58,15 +70,84 @@ void TrainingScene::buildTissue()
   CorotationalHexFemSettings settings;
   settings.timeStep = Scenario.timeStep;
   Fem = std::make_unique<CorotationalHexFem>(Meniscus.simulation, Scenario.material, settings);
+  if (instrumentCuts(Scenario.instrument))
+  {
+    buildCutting();
+    return;
+  }
   Collision = std::make_unique<DeformableCollisionMesh>(Meniscus.collision, Meniscus.simulation);
   VisualEmbedding.embed(Meniscus.simulation, Meniscus.visual.positions);
+  buildWrinkles(Meniscus.simulation, Meniscus.visual);
+}
+
+void TrainingScene::buildWrinkles(const HexahedralMesh& hexahedra, const TriangleMesh& surface)
+{
   if (Scenario.wrinkles)
   {
     // Monitor points every 0.16 mm: about the thesis's 296 (6.4.1).
     Wrinkles = std::make_unique<WrinkleGenerator>(
       resampleMonitorCurves(wrinkleDataCurves(Meniscus.monitorCurves), 0.16, Scenario.source),
-      Meniscus.simulation,
-      Meniscus.visual);
+      hexahedra,
+      surface);
+  }
+}
+
+void TrainingScene::buildCutting()
+{
+  // A cutting instrument: the visual mesh bound to the collision mesh (5.2)
+  // so that cuts reach it (5.3), removed pieces handed over to measure them.
+  const VisualCollisionBinding binding = bindVisualToCollision(Meniscus.visual, Meniscus.collision);
+  TissueCutterSettings settings;
+  settings.freePieces = FreePieceHandling::HandOver;
+  Cutter = std::make_unique<TissueCutter>(binding, Meniscus.simulation, Fem.get(), settings);
+  Action = std::make_unique<InstrumentAction>(Instrument);
+  // The monitor points in the cutter's hexahedra (a torn tissue's copies).
+  buildWrinkles(Cutter->simulation(), Cutter->visual().mesh());
+  rebuildCollisionMesh();
+}
+
+void TrainingScene::rebuildCollisionMesh()
+{
+  // The collision mesh of the triangles still in the tissue, each vertex
+  // embedded where the cutter keeps it (the copy holding its branch).
+  const CuttableCollisionMesh& cut = Cutter->collision();
+  const HexahedralEmbedding& embedding = Cutter->collisionEmbedding();
+  std::vector<int> newIndex(cut.vertexCount(), -1);
+  TriangleMesh active;
+  active.name = Meniscus.collision.name;
+  std::vector<double> radii;
+  std::vector<int> hexahedra;
+  std::vector<Vector3> local;
+  const std::vector<Vector3> current = Cutter->currentCollisionPositions();
+  for (std::size_t t = 0; t < cut.triangleCount(); ++t)
+  {
+    if (!Cutter->isActive(static_cast<int>(t)))
+      continue;
+    Triangle triangle = cut.triangles()[t];
+    for (int& v : triangle)
+    {
+      if (newIndex[v] < 0)
+      {
+        newIndex[v] = static_cast<int>(active.positions.size());
+        active.positions.push_back(current[v]);
+        radii.push_back(cut.radii()[v]);
+        hexahedra.push_back(embedding.hexahedron(v));
+        local.push_back(embedding.localCoordinates(v));
+      }
+      v = newIndex[v];
+    }
+    active.triangles.push_back(triangle);
+  }
+  active.pointAttributes.set("Radius", 1, radii);
+  HexahedralEmbedding activeEmbedding;
+  activeEmbedding.assign(Cutter->simulation(), std::move(hexahedra), std::move(local));
+  if (Collision)
+  {
+    *Collision = DeformableCollisionMesh(active, std::move(activeEmbedding));
+  }
+  else
+  {
+    Collision = std::make_unique<DeformableCollisionMesh>(active, std::move(activeEmbedding));
   }
 }
 
@@ -96,6 +177,10 @@ bool TrainingScene::step()
   const RigidPose previousScope = ScopePose;
   Tool.moveTo(Servo->latestToolState(1).pose, Scenario.timeStep);
   ScopePose = Servo->latestToolState(0).pose;
+  if (Action)
+  {
+    operate(Servo->latestToolState(1));
+  }
   const SolverResult result = Contacts.step();
   if (!result.ok)
   {
@@ -114,11 +199,50 @@ bool TrainingScene::step()
   return true;
 }
 
+void TrainingScene::operate(const HapticToolState& instrument)
+{
+  // The first button closes the jaws (punch, scissors) and runs the
+  // scalpel's edge or the shaver's motor.
+  const bool pressed = (instrument.stylus.buttons & 1u) != 0;
+  const double travel = Scenario.timeStep / JawTravelTime;
+  JawOpening = std::clamp(JawOpening + (pressed ? -travel : travel), 0.0, 1.0);
+  InstrumentCommand command;
+  command.time = Metrics.time + Scenario.timeStep;
+  command.pose = Tool.pose();
+  command.jawOpening = JawOpening;
+  command.working = pressed;
+  const InstrumentActionResult done = Action->apply(*Cutter, command);
+  if (!done.changed())
+  {
+    return;
+  }
+  ++TopologyVersion;
+  ++Metrics.operations;
+  Metrics.removedVolume += done.removedVolume;
+  if (Wrinkles)
+  {
+    Wrinkles->followCut(*Cutter, done.report);
+  }
+  rebuildCollisionMesh();
+}
+
+const TriangleMesh& TrainingScene::visualMesh() const
+{
+  return Cutter ? Cutter->visual().mesh() : Meniscus.visual;
+}
+
+std::vector<char> TrainingScene::activeVisualTriangles() const
+{
+  return Cutter ? Cutter->activeVisualTriangles()
+                : std::vector<char>(Meniscus.visual.triangleCount(), 1);
+}
+
 const std::vector<Vector3>& TrainingScene::visualPositions() const
 {
   if (VisualStale)
   {
-    VisualEmbedding.mapPositions(Fem->positions(), Visual);
+    const HexahedralEmbedding& embedding = Cutter ? Cutter->visualEmbedding() : VisualEmbedding;
+    embedding.mapPositions(Fem->positions(), Visual);
     if (Wrinkles)
     {
       Wrinkles->applyTo(Visual);
@@ -166,7 +290,9 @@ std::string TrainingScene::metricsJson() const
     { "camera_path_mm", Metrics.cameraPathLength },
     { "cartilage_contact_steps", Metrics.cartilageContactSteps },
     { "peak_force_N", Metrics.peakForce },
-    { "wrinkling_steps", Metrics.wrinklingSteps } };
+    { "wrinkling_steps", Metrics.wrinklingSteps },
+    { "operations", Metrics.operations },
+    { "removed_volume_mm3", Metrics.removedVolume } };
   return j.dump(2);
 }
 

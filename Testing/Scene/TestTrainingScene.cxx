@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 using namespace thintissue;
@@ -165,4 +166,50 @@ TEST(TrainingScene, ARunRecordedFromLiveDevicesReplaysBitForBit)
   EXPECT_EQ(replay.instrumentPose().rotation, live.instrumentPose().rotation);
   EXPECT_EQ(replay.visualPositions(), live.visualPositions());
   EXPECT_GT(live.metrics().instrumentPathLength, 1.0);
+}
+
+namespace
+{
+
+struct PunchReplay
+{
+  SceneRecording recording = readSceneRecording(Data + "/Recordings/meniscectomy-punch.json");
+  ScenarioDescription scenario = readScenario(recording.scenario);
+  ScriptedHapticDevice scope{ recording.scope };
+  ScriptedHapticDevice instrument{ recording.instrument };
+  TrainingScene scene{ scenario, scope, instrument };
+};
+
+} // namespace
+
+// The partial meniscectomy (thesis 6.4.2): five bites of the punch along the
+// bucket-handle fragment's inner border, each when the first button closes
+// the jaws; the bitten pieces go, and a replay gives the same meshes.
+TEST(TrainingScene, ThePunchScenarioBitesTissueAwayAndReplaysBitForBit)
+{
+  PunchReplay a;
+  ASSERT_NE(a.scene.cutter(), nullptr);
+  EXPECT_EQ(a.scene.topologyVersion(), 0);
+  const std::size_t before = a.scene.cutter()->activeTriangleCount();
+  ASSERT_TRUE(a.scene.runTo(1.6)) << a.scene.lastError();
+  EXPECT_EQ(a.scene.metrics().operations, 0) << "a bite before the jaws closed";
+  ASSERT_TRUE(a.scene.runTo(a.scenario.duration)) << a.scene.lastError();
+  const SceneMetrics& m = a.scene.metrics();
+  EXPECT_GE(m.operations, 3);
+  EXPECT_EQ(a.scene.topologyVersion(), m.operations);
+  EXPECT_GT(m.removedVolume, 5.0); // mm^3: pieces went
+  EXPECT_NE(a.scene.cutter()->activeTriangleCount(), before);
+  // Every visual vertex has a position; the drawn triangles exclude the
+  // removed pieces'.
+  EXPECT_EQ(a.scene.visualPositions().size(), a.scene.visualMesh().vertexCount());
+  const std::vector<char> shown = a.scene.activeVisualTriangles();
+  EXPECT_LT(std::count(shown.begin(), shown.end(), 1), static_cast<long>(shown.size()));
+  for (const Vector3& x : a.scene.visualPositions())
+  {
+    ASSERT_TRUE(x.allFinite());
+  }
+  PunchReplay b;
+  ASSERT_TRUE(b.scene.runTo(a.scenario.duration));
+  EXPECT_EQ(a.scene.visualPositions(), b.scene.visualPositions());
+  EXPECT_EQ(a.scene.metrics().removedVolume, b.scene.metrics().removedVolume);
 }

@@ -1,0 +1,124 @@
+// Writes Data/Recordings/meniscectomy-punch.json: the punch recording of the
+// partial meniscectomy scenario, made from the scenario's own geometry so
+// that it can be made again when the models change. For each of five bites
+// along the bucket-handle fragment's inner border (35 % to 65 % of it): from
+// 6 mm above, down beside the border, onto it with the jaws' bite outline
+// centred 0.8 mm in from the border and its face 0.3 mm above the border's
+// monitor point, the first button held 0.2 s (the jaws close and bite),
+// released, and back out. The arthroscope follows the examination's
+// recording. Usage: ThinTissueMakePunchRecording SCENARIO OUTPUT
+// SCENARIO-AS-WRITTEN EXAMINATION-RECORDING
+#include "PortalMapping.h"
+#include "TrainingScene.h"
+
+#include <iostream>
+
+using namespace thintissue;
+
+namespace
+{
+
+Vector3 centroid(const std::vector<Vector3>& points)
+{
+  Vector3 sum = Vector3::Zero();
+  for (const Vector3& p : points)
+    sum += p;
+  return sum / static_cast<double>(points.size());
+}
+
+/// The stylus position that puts the instrument's tool point `local` at
+/// `target` through the portal (fixed-point iteration on the mapping).
+Vector3 stylusFor(const PortalMapping& mapping,
+  const Eigen::Quaterniond& orientation,
+  const Vector3& local,
+  const Vector3& target)
+{
+  HapticDeviceState stylus;
+  stylus.orientation = orientation.toRotationMatrix();
+  for (int iteration = 0; iteration < 100; ++iteration)
+  {
+    const Vector3 error = target - mapping.instrumentPose(stylus) * local;
+    stylus.position += error;
+    if (error.norm() < 1e-9)
+      break;
+  }
+  return stylus.position;
+}
+
+/// A point of the curve at `fraction` of its data points, with the unit
+/// horizontal direction into the tissue there.
+void borderAt(const MonitorCurve& curve, double fraction, Vector3& point, Vector3& inward)
+{
+  const double x = fraction * static_cast<double>(curve.monitorPoints.size() - 1);
+  const std::size_t k =
+    std::min<std::size_t>(static_cast<std::size_t>(x), curve.monitorPoints.size() - 2);
+  const double w = x - static_cast<double>(k);
+  point = (1 - w) * curve.monitorPoints[k] + w * curve.monitorPoints[k + 1];
+  inward = (1 - w) * curve.regionPoints[k] + w * curve.regionPoints[k + 1] - point;
+  inward.z() = 0.0;
+  inward.normalize();
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc != 5)
+  {
+    std::cerr << "usage: ThinTissueMakePunchRecording SCENARIO OUTPUT SCENARIO-AS-WRITTEN "
+                 "EXAMINATION-RECORDING\n";
+    return 2;
+  }
+  const ScenarioDescription scenario = readScenario(argv[1]);
+  MeniscusParameters parameters =
+    scenario.examinationResolution ? examinationMeniscusParameters() : MeniscusParameters{};
+  parameters.tear = defaultMeniscusTear(scenario.tear);
+  const MeniscusModel meniscus = makeMeniscus(parameters);
+  const SurgicalInstrumentModel punch = makeSurgicalInstrument(scenario.instrument);
+  const Vector3 outline = centroid(punch.biteOutline);
+  PortalSettings portal;
+  portal.portal = scenario.instrumentPortal.portal;
+  portal.inward = scenario.instrumentPortal.inward;
+  const PortalMapping mapping(portal);
+  // The stylus's +y (the jaws' opening side) turned to world +z.
+  const Eigen::Quaterniond up(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitX()));
+
+  SceneRecording recording;
+  recording.scenario = argv[3];
+  recording.scope = readSceneRecording(argv[4]).scope;
+  recording.instrument.name = "instrument";
+  const auto sample = [&](double time, const Vector3& position, unsigned buttons)
+  {
+    HapticSample s;
+    s.time = time;
+    s.position = position;
+    s.orientation = up;
+    s.buttons = buttons;
+    recording.instrument.samples.push_back(s);
+  };
+  sample(0.0, Vector3::Zero(), 0);
+  const MonitorCurve& border = meniscus.monitorCurves.front();
+  double t = 0.8;
+  for (int bite = 0; bite < 5; ++bite)
+  {
+    Vector3 point, inward;
+    borderAt(border, 0.35 + 0.3 * bite / 4.0, point, inward);
+    const Vector3 target = point + 0.8 * inward + Vector3(0.0, 0.0, 0.3);
+    const Vector3 on = stylusFor(mapping, up, outline, target);
+    const Vector3 beside = stylusFor(mapping, up, outline, target - 3.0 * inward);
+    const Vector3 above =
+      stylusFor(mapping, up, outline, target - 3.0 * inward + Vector3(0.0, 0.0, 6.0));
+    sample(t, above, 0);
+    sample(t += 0.3, beside, 0);
+    sample(t += 0.3, on, 0);
+    sample(t += 0.15, on, 1);
+    sample(t += 0.2, on, 0);
+    sample(t += 0.15, beside, 0);
+    sample(t += 0.2, above, 0);
+    t += 0.1;
+  }
+  sample(t + 0.5, Vector3::Zero(), 0);
+  writeSceneRecording(argv[2], recording);
+  std::cout << "recording of " << t + 0.5 << " s written to " << argv[2] << "\n";
+  return 0;
+}
