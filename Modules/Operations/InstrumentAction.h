@@ -77,7 +77,7 @@ struct InstrumentActionSettings
   double closedJawOpening = 0.05;
   /// How far the punch's cut reaches below the fixed jaw's face (mm): the
   /// tissue resting on the jaw is cut through.
-  double biteDepthBelowJaw = 0.5;
+  double biteDepthBelowJaw = 1.0;
   /// How far the scissors' cut reaches either side of the blades' middle
   /// line, across the tissue between them (mm).
   double scissorsHalfHeight = 3.0;
