@@ -92,6 +92,7 @@ WrinkleGenerator::WrinkleGenerator(MonitorPointSet monitors,
   Displaced.reserve(Influence.affectedPoints().size());
   Displacements.reserve(Influence.affectedPoints().size());
   SlotOfPoint.assign(surfaceRest.vertexCount(), -1);
+  ShownTriangles.assign(surfaceRest.triangleCount(), 1);
 }
 
 void WrinkleGenerator::setParameters(const WrinkleParameters& parameters)

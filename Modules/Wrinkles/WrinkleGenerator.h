@@ -158,13 +158,20 @@ private:
   void computeWrinklePoints();
   void propagate();
   std::vector<char> placeAfterCut(const TissueCutter& cutter, const TissueCutReport& report);
-  void dropAndSplit(const std::vector<char>& keep, const HexahedralMesh& mesh);
+  std::vector<int> dropAndSplit(const std::vector<char>& keep, const HexahedralMesh& mesh);
+  void forgetNewCurveEnds(const std::vector<int>& oldStarts, std::vector<int>& previous) const;
+  void refreshInfluence(const TissueCutter& cutter,
+    const TissueCutReport& report,
+    const std::vector<int>& previous);
 
   MonitorPointSet Monitors;
   HexahedralEmbedding Embedding;
   WrinkleInfluence Influence;
   WrinkleParameters Parameters;
   WrinkleInfluenceSettings InfluenceSettings;
+  /// Per visual triangle: whether the influence was found on it (the
+  /// surface's triangles still in the tissue).
+  std::vector<char> ShownTriangles;
   std::vector<Vector3> Current;
   std::vector<Vector3> Previous;
   std::vector<Vector3> Reference;

@@ -313,12 +313,12 @@ private:
 
 } // namespace
 
-WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
-  const std::vector<Vector3>& surfaceRest,
-  const std::vector<Triangle>& triangles,
-  const WrinkleInfluenceSettings& settings)
+namespace
 {
-  const std::vector<MonitorReach> reaches = reachesOf(monitors, settings);
+
+/// The grid over the surface points any of `reaches` can affect.
+PointGrid gridFor(const std::vector<MonitorReach>& reaches, const std::vector<Vector3>& surface)
+{
   BoundingBox box;
   double largest = 0.0;
   for (const MonitorReach& r : reaches)
@@ -328,38 +328,110 @@ WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
   }
   box.min().array() -= largest;
   box.max().array() += largest;
-  const PointGrid grid(surfaceRest, box, largest);
+  return PointGrid(surface, box, largest > 0.0 ? largest : 1.0);
+}
 
+bool reachMeets(const MonitorReach& r, const BoundingBox& box)
+{
+  const double radius = std::min(r.sphereRadius, r.length);
+  const Vector3 nearest = r.origin.cwiseMax(box.min()).cwiseMin(box.max());
+  return !box.isEmpty() && (nearest - r.origin).squaredNorm() <= radius * radius;
+}
+
+} // namespace
+
+WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
+  const std::vector<Vector3>& surfaceRest,
+  const std::vector<Triangle>& triangles,
+  const WrinkleInfluenceSettings& settings)
+  : Settings(settings)
+{
+  const std::vector<MonitorReach> reaches = reachesOf(monitors, settings);
+  const PointGrid grid = gridFor(reaches, surfaceRest);
   std::vector<RawEntry> raw;
   AffectedPointSearch search(surfaceRest, triangles, grid, settings.negligibleBlend);
+  std::vector<int> counts(monitors.size(), 0);
   for (std::size_t i = 0; i < reaches.size(); ++i)
   {
+    raw.clear();
     search.find(static_cast<int>(i), reaches[i], raw);
-  }
-  std::vector<double> blendSum(surfaceRest.size(), 0.0);
-  for (const RawEntry& e : raw)
-  {
-    blendSum[e.point] += e.blend;
-  }
-  // raw is already grouped by monitor, in increasing order.
-  Offsets.assign(monitors.size() + 1, 0);
-  Points.reserve(raw.size());
-  Factors.reserve(raw.size());
-  std::vector<char> seen(surfaceRest.size(), 0);
-  for (const RawEntry& e : raw)
-  {
-    ++Offsets[e.monitor + 1];
-    Points.push_back(e.point);
-    Factors.push_back(e.blend / blendSum[e.point] * e.attenuation);
-    if (!seen[e.point])
+    counts[i] = static_cast<int>(raw.size());
+    for (const RawEntry& e : raw)
     {
-      seen[e.point] = 1;
-      Affected.push_back(e.point);
+      Points.push_back(e.point);
+      Blends.push_back(e.blend);
+      Attenuations.push_back(e.attenuation);
     }
   }
-  for (std::size_t i = 0; i < monitors.size(); ++i)
+  normalise(counts, surfaceRest.size());
+}
+
+void WrinkleInfluence::refresh(const MonitorPointSet& monitors,
+  const std::vector<int>& previous,
+  const std::vector<Vector3>& surfaceRest,
+  const std::vector<Triangle>& triangles,
+  const BoundingBox& changed)
+{
+  const std::vector<MonitorReach> reaches = reachesOf(monitors, Settings);
+  const PointGrid grid = gridFor(reaches, surfaceRest);
+  AffectedPointSearch search(surfaceRest, triangles, grid, Settings.negligibleBlend);
+  std::vector<int> points;
+  std::vector<double> blends, attenuations;
+  std::vector<int> counts(monitors.size(), 0);
+  std::vector<RawEntry> raw;
+  for (std::size_t i = 0; i < reaches.size(); ++i)
   {
-    Offsets[i + 1] += Offsets[i];
+    const int old = previous[i];
+    if (old >= 0 && !reachMeets(reaches[i], changed))
+    {
+      // Far from the cut: the same points, blends and attenuations.
+      counts[i] = Offsets[old + 1] - Offsets[old];
+      points.insert(points.end(), Points.begin() + Offsets[old], Points.begin() + Offsets[old + 1]);
+      blends.insert(blends.end(), Blends.begin() + Offsets[old], Blends.begin() + Offsets[old + 1]);
+      attenuations.insert(attenuations.end(),
+        Attenuations.begin() + Offsets[old],
+        Attenuations.begin() + Offsets[old + 1]);
+      continue;
+    }
+    raw.clear();
+    search.find(static_cast<int>(i), reaches[i], raw);
+    counts[i] = static_cast<int>(raw.size());
+    for (const RawEntry& e : raw)
+    {
+      points.push_back(e.point);
+      blends.push_back(e.blend);
+      attenuations.push_back(e.attenuation);
+    }
+  }
+  Points = std::move(points);
+  Blends = std::move(blends);
+  Attenuations = std::move(attenuations);
+  normalise(counts, surfaceRest.size());
+}
+
+void WrinkleInfluence::normalise(const std::vector<int>& counts, std::size_t surfaceCount)
+{
+  std::vector<double> blendSum(surfaceCount, 0.0);
+  for (std::size_t e = 0; e < Points.size(); ++e)
+  {
+    blendSum[Points[e]] += Blends[e];
+  }
+  Offsets.assign(counts.size() + 1, 0);
+  for (std::size_t i = 0; i < counts.size(); ++i)
+  {
+    Offsets[i + 1] = Offsets[i] + counts[i];
+  }
+  Factors.resize(Points.size());
+  Affected.clear();
+  std::vector<char> seen(surfaceCount, 0);
+  for (std::size_t e = 0; e < Points.size(); ++e)
+  {
+    Factors[e] = Blends[e] / blendSum[Points[e]] * Attenuations[e];
+    if (!seen[Points[e]])
+    {
+      seen[Points[e]] = 1;
+      Affected.push_back(Points[e]);
+    }
   }
   std::sort(Affected.begin(), Affected.end());
 }
@@ -367,7 +439,7 @@ WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
 std::size_t WrinkleInfluence::memoryBytes() const
 {
   return (Offsets.size() + Points.size() + Affected.size()) * sizeof(int) +
-         Factors.size() * sizeof(double);
+         (Factors.size() + Blends.size() + Attenuations.size()) * sizeof(double);
 }
 
 } // namespace thintissue

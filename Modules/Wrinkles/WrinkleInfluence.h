@@ -62,6 +62,18 @@ public:
     const std::vector<Triangle>& triangles = {},
     const WrinkleInfluenceSettings& settings = {});
 
+  /// After a cut changed the surface within `changed` (rest positions; the
+  /// triangles the cut rewrote, added or took away): monitor point i of
+  /// `monitors` was monitor point previous[i] before (-1: new). Those whose
+  /// reach meets `changed`, and new ones, are searched again on the new
+  /// surface; the others keep their entries; the blends are normalised
+  /// again. Costs the monitor points near the cut and the entries, not a
+  /// search of every monitor point.
+  void refresh(const MonitorPointSet& monitors,
+    const std::vector<int>& previous,
+    const std::vector<Vector3>& surfaceRest,
+    const std::vector<Triangle>& triangles,
+    const BoundingBox& changed);
   std::size_t monitorCount() const { return Offsets.size() - 1; }
   int affectedBegin(std::size_t monitor) const { return Offsets[monitor]; }
   int affectedEnd(std::size_t monitor) const { return Offsets[monitor + 1]; }
@@ -74,9 +86,18 @@ public:
   std::size_t memoryBytes() const;
 
 private:
+  /// Offsets, Points, Factors and Affected from Points, Blends and
+  /// Attenuations (grouped by monitor, `counts` entries each).
+  void normalise(const std::vector<int>& counts, std::size_t surfaceCount);
+
+  WrinkleInfluenceSettings Settings;
   std::vector<int> Offsets{ 0 };
   std::vector<int> Points;
   std::vector<double> Factors;
+  /// Per entry: its blend b and attenuation w before normalising (kept so
+  /// that a cut re-searches only the monitor points near it).
+  std::vector<double> Blends;
+  std::vector<double> Attenuations;
   std::vector<int> Affected;
 };
 

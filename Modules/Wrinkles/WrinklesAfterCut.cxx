@@ -60,22 +60,12 @@ void WrinkleGenerator::followCut(const TissueCutter& cutter, const TissueCutRepo
     return;
   }
   const std::vector<char> keep = placeAfterCut(cutter, report);
-  dropAndSplit(keep, cutter.simulation());
+  const std::vector<int> oldStarts = Monitors.curveStarts;
+  std::vector<int> previous = dropAndSplit(keep, cutter.simulation());
+  forgetNewCurveEnds(oldStarts, previous);
   if (cutter.hasVisual())
   {
-    // Only the triangles still part of the tissue carry wrinkles.
-    const TriangleMesh& visual = cutter.visual().mesh();
-    const std::vector<char> active = cutter.activeVisualTriangles();
-    std::vector<Triangle> shown;
-    for (std::size_t t = 0; t < visual.triangleCount(); ++t)
-    {
-      if (active[t])
-      {
-        shown.push_back(visual.triangles[t]);
-      }
-    }
-    Influence = WrinkleInfluence(Monitors, visual.positions, shown, InfluenceSettings);
-    SlotOfPoint.assign(visual.vertexCount(), -1);
+    refreshInfluence(cutter, report, previous);
   }
   Displaced.clear();
   Displacements.clear();
@@ -84,6 +74,61 @@ void WrinkleGenerator::followCut(const TissueCutter& cutter, const TissueCutRepo
   NeedWrinkles = false;
   Reference.clear();
   WindowBegin = WindowEnd = 0;
+}
+
+/// A point that ends a curve now but did not before has other neighbours
+/// (its blend width is their spacing): it is searched again as if new.
+void WrinkleGenerator::forgetNewCurveEnds(const std::vector<int>& oldStarts,
+  std::vector<int>& previous) const
+{
+  const auto isOldStart = [&](int old)
+  { return std::binary_search(oldStarts.begin(), oldStarts.end(), old); };
+  for (std::size_t c = 0; c < Monitors.curveCount(); ++c)
+  {
+    const int first = Monitors.curveStarts[c];
+    const int last = Monitors.curveStarts[c + 1] - 1;
+    if (!isOldStart(previous[first]))
+      previous[first] = -1;
+    if (!isOldStart(previous[last] + 1))
+      previous[last] = -1;
+  }
+}
+
+/// The affected points again where the cut changed the surface: the
+/// triangles it rewrote or added and those it took away (removed pieces).
+void WrinkleGenerator::refreshInfluence(const TissueCutter& cutter,
+  const TissueCutReport& report,
+  const std::vector<int>& previous)
+{
+  // Only the triangles still part of the tissue carry wrinkles.
+  const TriangleMesh& visual = cutter.visual().mesh();
+  const std::vector<char> active = cutter.activeVisualTriangles();
+  BoundingBox changed;
+  const auto include = [&](std::size_t t)
+  {
+    for (const int v : visual.triangles[t])
+      changed.extend(visual.positions[v]);
+  };
+  for (const int t : report.visual.changedTriangles)
+  {
+    include(static_cast<std::size_t>(t));
+  }
+  std::vector<Triangle> shown;
+  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+  {
+    const bool wasShown = t < ShownTriangles.size() && ShownTriangles[t];
+    if (active[t])
+    {
+      shown.push_back(visual.triangles[t]);
+    }
+    if (wasShown != (active[t] != 0))
+    {
+      include(t);
+    }
+  }
+  Influence.refresh(Monitors, previous, visual.positions, shown, changed);
+  ShownTriangles = active;
+  SlotOfPoint.assign(visual.vertexCount(), -1);
 }
 
 /// Moves monitor points to the copy of their hexahedron holding their
@@ -121,12 +166,15 @@ std::vector<char> WrinkleGenerator::placeAfterCut(const TissueCutter& cutter,
 }
 
 /// Drops the points not kept and splits curves where points were dropped
-/// or consecutive points' hexahedra share no node.
-void WrinkleGenerator::dropAndSplit(const std::vector<char>& keep, const HexahedralMesh& mesh)
+/// or consecutive points' hexahedra share no node; returns, per point kept,
+/// its index before.
+std::vector<int> WrinkleGenerator::dropAndSplit(const std::vector<char>& keep,
+  const HexahedralMesh& mesh)
 {
+  std::vector<int> previous;
   MonitorPointSet survivors;
   std::vector<int> hexahedra;
-  std::vector<Vector3> local, current, previous;
+  std::vector<Vector3> local, current, previousPositions;
   std::vector<Vector3> monitor, region;
   std::vector<double> thickness;
   const auto closeCurve = [&]
@@ -138,9 +186,10 @@ void WrinkleGenerator::dropAndSplit(const std::vector<char>& keep, const Hexahed
     else if (!monitor.empty()) // a lone point cannot wave: drop it too
     {
       hexahedra.pop_back();
+      previous.pop_back();
       local.pop_back();
       current.pop_back();
-      previous.pop_back();
+      previousPositions.pop_back();
     }
     monitor.clear();
     region.clear();
@@ -165,16 +214,18 @@ void WrinkleGenerator::dropAndSplit(const std::vector<char>& keep, const Hexahed
       region.push_back(Monitors.regionPoints[i]);
       thickness.push_back(Monitors.thickness[i]);
       hexahedra.push_back(Embedding.hexahedron(static_cast<std::size_t>(i)));
+      previous.push_back(i);
       local.push_back(Embedding.localCoordinates(static_cast<std::size_t>(i)));
       current.push_back(Current[i]);
-      previous.push_back(Previous[i]);
+      previousPositions.push_back(Previous[i]);
     }
     closeCurve();
   }
   Monitors = std::move(survivors);
   Embedding.assign(mesh, std::move(hexahedra), std::move(local));
   Current = std::move(current);
-  Previous = std::move(previous);
+  Previous = std::move(previousPositions);
+  return previous;
 }
 
 } // namespace thintissue
