@@ -62,6 +62,31 @@ Blade punchAt(const Vector3& centre, double radius)
   return Blade::sweptOutline(low, high);
 }
 
+/// The influence followCut refreshed near the cut is the one a search of
+/// every monitor point on the cut surface finds (same points, same factors).
+::testing::AssertionResult influenceIsAsIfFound(const WrinkleGenerator& g,
+  const TissueCutter& cutter)
+{
+  const TriangleMesh& visual = cutter.visual().mesh();
+  const std::vector<char> active = cutter.activeVisualTriangles();
+  std::vector<Triangle> shown;
+  for (std::size_t t = 0; t < visual.triangleCount(); ++t)
+    if (active[t])
+      shown.push_back(visual.triangles[t]);
+  const WrinkleInfluence found(g.monitors(), visual.positions, shown);
+  const WrinkleInfluence& kept = g.influence();
+  if (found.monitorCount() != kept.monitorCount() || found.entryCount() != kept.entryCount())
+    return ::testing::AssertionFailure()
+           << kept.entryCount() << " entries kept, " << found.entryCount() << " found";
+  for (std::size_t e = 0; e < found.entryCount(); ++e)
+  {
+    const int i = static_cast<int>(e);
+    if (found.point(i) != kept.point(i) || std::abs(found.factor(i) - kept.factor(i)) > 1e-12)
+      return ::testing::AssertionFailure() << "entry " << e << " differs";
+  }
+  return ::testing::AssertionSuccess();
+}
+
 } // namespace
 
 TEST(WrinklesAfterCut, ARadialCutSplitsTheCurveAndTheLipsDoNotMoveEachOther)
@@ -83,6 +108,7 @@ TEST(WrinklesAfterCut, ARadialCutSplitsTheCurveAndTheLipsDoNotMoveEachOther)
   ASSERT_TRUE(report.changed());
   ASSERT_FALSE(report.simulation.newHexahedra.empty());
   g.followCut(cutter, report);
+  EXPECT_TRUE(influenceIsAsIfFound(g, cutter));
   EXPECT_EQ(g.monitors().curveCount(), 2u);
   EXPECT_GE(g.monitors().size(), before - 2); // at most a lone point at the cut
   EXPECT_EQ(g.monitorEmbedding().nodeCount(), cutter.simulation().nodeCount());
@@ -121,6 +147,7 @@ TEST(WrinklesAfterCut, APunchedOutPieceTakesItsMonitorPointsAndTheRestStillWrink
   ASSERT_TRUE(report.changed());
   ASSERT_GE(report.removedPieces, 1);
   g.followCut(cutter, report);
+  EXPECT_TRUE(influenceIsAsIfFound(g, cutter));
   const std::size_t dropped = before - g.monitors().size();
   EXPECT_GT(dropped, 15u); // about 2 x 2.5 mm of border at 0.16 mm
   EXPECT_LT(dropped, 45u);
