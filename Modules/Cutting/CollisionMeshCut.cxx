@@ -566,20 +566,41 @@ void CuttableCollisionMesh::openAlongCut(CollisionCutResult& result)
 }
 
 void CuttableCollisionMesh::updateTips(const std::vector<int>& sweepFeatures,
+  const std::vector<int>& reachedTips,
   const std::vector<std::array<int, 2>>& sweepCutEdges)
 {
   // The blade moves on: what it reached this time and left with at most
   // one cut edge is where the next blade continues (the tips it continued
   // from are behind it).
   Tips.clear();
+  // Each cut edge once: the triangles on both of its sides list it.
+  std::vector<std::array<int, 2>> edges = sweepCutEdges;
+  for (auto& edge : edges)
+  {
+    if (edge[0] > edge[1])
+      std::swap(edge[0], edge[1]);
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   for (int v : sweepFeatures)
   {
     int cutEdges = 0;
-    for (const auto& edge : sweepCutEdges)
+    for (const auto& edge : edges)
     {
       cutEdges += (edge[0] == v || edge[1] == v) ? 1 : 0;
     }
     if (cutEdges <= 1 && !VertexTriangles[v].empty())
+    {
+      Tips.insert(v);
+    }
+  }
+  // A tip the blade reached again without cutting on from it (a blade
+  // that moved less than to the next edge, or back) is still the tip.
+  for (int v : reachedTips)
+  {
+    const bool left = std::any_of(
+      edges.begin(), edges.end(), [v](const auto& edge) { return edge[0] == v || edge[1] == v; });
+    if (!left && !VertexTriangles[v].empty())
     {
       Tips.insert(v);
     }
@@ -609,13 +630,12 @@ CollisionCutResult CuttableCollisionMesh::cut(const Blade& blade,
     return result;
   }
   const auto reached = collectFeatures(crossings, settings.snapFraction, result);
-  std::vector<int> sweepFeatures;
+  std::vector<int> sweepFeatures, reachedTips;
   for (const auto& f : reached)
   {
     for (int i : f.features)
     {
-      if (!Tips.count(f.polygon[i]))
-        sweepFeatures.push_back(f.polygon[i]);
+      (Tips.count(f.polygon[i]) ? reachedTips : sweepFeatures).push_back(f.polygon[i]);
     }
     splitTriangle(f, result);
   }
@@ -636,7 +656,7 @@ CollisionCutResult CuttableCollisionMesh::cut(const Blade& blade,
   }
   result.cutEdges = inside;
   // Tips are found before opening: a copy made by opening is not a tip.
-  updateTips(sweepFeatures, sweepCutEdges);
+  updateTips(sweepFeatures, reachedTips, sweepCutEdges);
   openAlongCut(result);
   std::sort(result.changedTriangles.begin(), result.changedTriangles.end());
   result.changedTriangles.erase(

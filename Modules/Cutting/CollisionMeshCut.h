@@ -131,6 +131,7 @@ private:
   void splitTriangle(const TriangleFeatures& features, CollisionCutResult& result);
   void openAlongCut(CollisionCutResult& result);
   void updateTips(const std::vector<int>& sweepFeatures,
+    const std::vector<int>& reachedTips,
     const std::vector<std::array<int, 2>>& sweepCutEdges);
 
   std::string Name;

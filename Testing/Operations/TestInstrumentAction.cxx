@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 using namespace thintissue;
 using namespace thintissue::cutting_test;
@@ -237,6 +238,50 @@ TEST(InstrumentAction, TheScalpelCutsWhileEngagedAndMoving)
   EXPECT_TRUE(stroke.changed()) << stroke.refused;
   EXPECT_GT(s.cutter.collision().triangleCount(), triangles);
   EXPECT_TRUE(cutterIsConsistent(s.cutter, s.sheet.simulation));
+}
+
+namespace
+{
+
+/// Pieces of the collision triangles still in the tissue (through edges).
+int collisionPieceCount(const TissueCutter& cutter)
+{
+  int count = 0;
+  const std::vector<int> piece = collisionPieces(cutter.collision(), count);
+  std::set<int> active;
+  for (std::size_t t = 0; t < piece.size(); ++t)
+    if (cutter.isActive(static_cast<int>(t)))
+      active.insert(piece[t]);
+  return static_cast<int>(active.size());
+}
+
+} // namespace
+
+// The simulator draws the knife a little each physics step (0.07 mm at
+// 36 mm/s and 2 ms): the cut must go on from where the last step left it,
+// also when a step reaches only its tip again or a vertex beside it (before
+// the fix, the tip was dropped and the sheet stayed one piece).
+TEST(InstrumentAction, TheScalpelDrawnAcrossInSmallStepsCutsTheSheetInTwo)
+{
+  ThinSheetParameters p;
+  p.width = 60.0;
+  p.depth = 60.0;
+  const TissueModel sheet = makeThinSheet(p);
+  for (const double x : { 0.0, 1.3 }) // through lattice vertices, and between
+  {
+    TissueCutter cutter(sheet.collision, sheet.simulation);
+    InstrumentAction scalpel(makeSurgicalInstrument(SurgicalInstrumentType::Scalpel));
+    const SurgicalInstrumentModel& model = scalpel.instrument();
+    const Vector3 edgeMiddle = 0.5 * (model.cuttingEdge.front() + model.cuttingEdge.back());
+    for (double y = -36.0; y <= 36.0; y += 0.072)
+    {
+      const RigidPose pose =
+        poseAt(edgeMiddle, Vector3(x, y, 0.0), Vector3::UnitY(), Vector3(0.0, -1.0, 1.0));
+      scalpel.apply(cutter, command(y, pose, 1.0, true));
+    }
+    EXPECT_EQ(collisionPieceCount(cutter), 2) << "cut at x = " << x;
+    EXPECT_TRUE(cutterIsConsistent(cutter, sheet.simulation)) << "cut at x = " << x;
+  }
 }
 
 TEST(InstrumentAction, TheShaverBitesWhileItsMotorRunsAtItsBiteRate)
