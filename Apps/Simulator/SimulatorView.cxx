@@ -81,15 +81,37 @@ SimulatorView::SimulatorView(const TrainingScene& scene)
 
 void SimulatorView::addKnee()
 {
+  // Without the knee (a tissue on the bench) nothing; the knee part that is
+  // the scenario's tissue is drawn as the tissue, not here.
+  const ScenarioDescription& scenario = Scene.scenario();
+  if (!scenario.knee)
+  {
+    return;
+  }
   const KneeSurroundings& knee = Scene.knee();
-  Renderer->AddActor(surfaceActor(withNormals(knee.tibia.visual), { 0.90, 0.82, 0.60 }, false));
-  Renderer->AddActor(surfaceActor(withNormals(knee.femur.visual), { 0.90, 0.82, 0.60 }, false));
-  Renderer->AddActor(
-    surfaceActor(withNormals(knee.tibialCartilage.visual), { 0.82, 0.86, 0.92 }, true));
-  Renderer->AddActor(
-    surfaceActor(withNormals(knee.anteriorCruciateLigament.visual), { 0.88, 0.62, 0.58 }, true));
-  Renderer->AddActor(
-    surfaceActor(withNormals(knee.posteriorCruciateLigament.visual), { 0.84, 0.58, 0.56 }, true));
+  const auto add = [&](const auto& part, const std::array<double, 3>& colour, bool wet)
+  {
+    vtkSmartPointer<vtkActor> actor = surfaceActor(withNormals(part.visual), colour, wet);
+    Renderer->AddActor(actor);
+    return actor;
+  };
+  add(knee.tibia, { 0.90, 0.82, 0.60 }, false);
+  Femur = add(knee.femur, { 0.90, 0.82, 0.60 }, false);
+  const std::pair<const char*, const TissueModel*> softParts[] = {
+    { "tibial_cartilage", &knee.tibialCartilage },
+    { "anterior_cruciate_ligament", &knee.anteriorCruciateLigament },
+    { "posterior_cruciate_ligament", &knee.posteriorCruciateLigament },
+  };
+  const std::array<double, 3> colours[] = {
+    { 0.82, 0.86, 0.92 }, { 0.88, 0.62, 0.58 }, { 0.84, 0.58, 0.56 }
+  };
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    if (scenario.tissueModel != softParts[k].first)
+    {
+      add(*softParts[k].second, colours[k], true);
+    }
+  }
 }
 
 void SimulatorView::addRoundFieldOfView()
@@ -144,10 +166,9 @@ vtkRenderer* SimulatorView::overview()
   Overview->SetBackground(0.10, 0.11, 0.14);
   vtkActorCollection* actors = Renderer->GetActors();
   actors->InitTraversal();
-  int index = 0;
   while (vtkActor* actor = actors->GetNextActor())
   {
-    if (index++ != 1) // every actor but the femur (it hides the joint)
+    if (actor != Femur) // every actor but the femur (it hides the joint)
     {
       Overview->AddActor(actor);
     }

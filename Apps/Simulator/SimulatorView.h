@@ -54,6 +54,7 @@ private:
   std::vector<Vector3> RestNormals;
   std::vector<Vector3> ComputedRestNormals;
   vtkSmartPointer<vtkActor> Instrument;
+  vtkSmartPointer<vtkActor> Femur;
   vtkSmartPointer<vtkPolyData> Ring;
   vtkSmartPointer<vtkRenderer> Overview;
   vtkSmartPointer<vtkPolyData> ScopeShaft;

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -138,13 +139,52 @@ private:
   std::string Source;
 };
 
+/// A path relative to the scenario file's directory.
+std::string besideScenario(const std::string& source, const std::string& path)
+{
+  const std::filesystem::path p(path);
+  if (p.is_absolute() || source.empty())
+    return path;
+  return (std::filesystem::path(source).parent_path() / p).lexically_normal().string();
+}
+
+void readTissueSource(const ScenarioReader& r, ScenarioDescription& s)
+{
+  static const std::vector<std::string> models = { "meniscus",
+    "anterior_cruciate_ligament",
+    "posterior_cruciate_ligament",
+    "tibial_cartilage",
+    "sheet",
+    "file",
+    "bundle" };
+  s.tissueModel = r.text("tissue.model", s.tissueModel);
+  if (std::find(models.begin(), models.end(), s.tissueModel) == models.end())
+  {
+    std::string known;
+    for (const std::string& m : models)
+      known += (known.empty() ? "" : ", ") + m;
+    r.fail("tissue.model", "unknown model '" + s.tissueModel + "' (known: " + known + ")");
+  }
+  const bool fromFile = s.tissueModel == "file" || s.tissueModel == "bundle";
+  s.tissueFile = r.text("tissue.file", "");
+  if (fromFile && s.tissueFile.empty())
+  {
+    r.fail("tissue.file", "a \"" + s.tissueModel + "\" tissue needs its file");
+  }
+  s.tissueFile = besideScenario(s.source, s.tissueFile);
+  s.fixedNodes = r.text("tissue.fixed", s.fixedNodes);
+  if (s.fixedNodes != "model" && s.fixedNodes != "none" && s.fixedNodes != "ends" &&
+      s.fixedNodes != "bottom")
+  {
+    r.fail("tissue.fixed", "must be \"model\", \"none\", \"ends\" or \"bottom\"");
+  }
+  s.sheetSize = r.vector("tissue.size", s.sheetSize);
+  s.knee = r.flag("knee", s.knee);
+}
+
 void readTissue(const ScenarioReader& r, ScenarioDescription& s)
 {
-  s.tissueModel = r.text("tissue.model", s.tissueModel);
-  if (s.tissueModel != "meniscus")
-  {
-    r.fail("tissue.model", "unknown model '" + s.tissueModel + "' (known: meniscus)");
-  }
+  readTissueSource(r, s);
   s.tear = r.named(
     "tissue.tear", "none", [](const std::string& n) { return meniscusTearTypeFromName(n); });
   const std::string resolution = r.text("tissue.resolution", "examination");
@@ -153,7 +193,11 @@ void readTissue(const ScenarioReader& r, ScenarioDescription& s)
     r.fail("tissue.resolution", "must be \"examination\" or \"default\"");
   }
   s.examinationResolution = resolution == "examination";
-  s.wrinkles = r.flag("tissue.wrinkles", s.wrinkles);
+  s.wrinkles = r.flag("tissue.wrinkles", s.tissueModel == "meniscus" && s.wrinkles);
+  if (s.wrinkles && s.tissueModel != "meniscus")
+  {
+    r.fail("tissue.wrinkles", "only the meniscus model carries monitor data for wrinkles");
+  }
   s.material.youngModulus = r.number("tissue.material.youngModulus", s.material.youngModulus);
   s.material.poissonRatio =
     r.number("tissue.material.poissonRatio", s.material.poissonRatio, false);

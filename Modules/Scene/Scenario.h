@@ -30,8 +30,24 @@ struct ScenarioDescription
   std::string source; ///< the file it came from (for messages)
   std::string name;
   std::string description;
-  /// The tissue: "meniscus" (with `tear`, `examinationResolution`).
+  /// The tissue: "meniscus" (with `tear`, `examinationResolution`),
+  /// "anterior_cruciate_ligament", "posterior_cruciate_ligament",
+  /// "tibial_cartilage" (the knee's own, made deformable), "sheet" (the
+  /// thesis's thin sheet, `sheetSize`), "file" (a mesh file prepared when the
+  /// scenario loads) or "bundle" (a tissue prepared by ThinTissuePrepare).
   std::string tissueModel = "meniscus";
+  /// "file" and "bundle": the path (relative paths are relative to the
+  /// scenario file).
+  std::string tissueFile;
+  /// Nodes held still: "model" (the procedural model's own attachments;
+  /// none for files and bundles), "none", "ends" (both ends of the longest
+  /// side, 5 % of it each) or "bottom" (the lowest 10 % of the height).
+  std::string fixedNodes = "model";
+  /// "sheet": width, depth and thickness (mm).
+  Vector3 sheetSize = Vector3(100.0, 100.0, 2.0);
+  /// Whether the knee (bones, cartilage, ligaments) is there: off for a
+  /// tissue on the bench (sheet, steak).
+  bool knee = true;
   MeniscusTearType tear = MeniscusTearType::None;
   bool examinationResolution = true;
   bool wrinkles = true;

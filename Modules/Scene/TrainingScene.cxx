@@ -63,30 +63,28 @@ TrainingScene::~TrainingScene() = default;
 
 void TrainingScene::buildTissue()
 {
-  MeniscusParameters p =
-    Scenario.examinationResolution ? examinationMeniscusParameters() : MeniscusParameters{};
-  p.tear = defaultMeniscusTear(Scenario.tear);
-  Meniscus = makeMeniscus(p);
+  Tissue = makeScenarioTissue(Scenario, Knee);
+  const TissueModel& model = Tissue.model;
   CorotationalHexFemSettings settings;
   settings.timeStep = Scenario.timeStep;
-  Fem = std::make_unique<CorotationalHexFem>(Meniscus.simulation, Scenario.material, settings);
+  Fem = std::make_unique<CorotationalHexFem>(model.simulation, Scenario.material, settings);
   if (instrumentCuts(Scenario.instrument))
   {
     buildCutting();
     return;
   }
-  Collision = std::make_unique<DeformableCollisionMesh>(Meniscus.collision, Meniscus.simulation);
-  VisualEmbedding.embed(Meniscus.simulation, Meniscus.visual.positions);
-  buildWrinkles(Meniscus.simulation, Meniscus.visual);
+  Collision = std::make_unique<DeformableCollisionMesh>(model.collision, model.simulation);
+  VisualEmbedding.embed(model.simulation, model.visual.positions);
+  buildWrinkles(model.simulation, model.visual);
 }
 
 void TrainingScene::buildWrinkles(const HexahedralMesh& hexahedra, const TriangleMesh& surface)
 {
-  if (Scenario.wrinkles)
+  if (Scenario.wrinkles && !Tissue.monitorCurves.empty())
   {
     // Monitor points every 0.16 mm: about the thesis's 296 (6.4.1).
     Wrinkles = std::make_unique<WrinkleGenerator>(
-      resampleMonitorCurves(wrinkleDataCurves(Meniscus.monitorCurves), 0.16, Scenario.source),
+      resampleMonitorCurves(wrinkleDataCurves(Tissue.monitorCurves), 0.16, Scenario.source),
       hexahedra,
       surface);
   }
@@ -96,10 +94,16 @@ void TrainingScene::buildCutting()
 {
   // A cutting instrument: the visual mesh bound to the collision mesh (5.2)
   // so that cuts reach it (5.3), removed pieces handed over to measure them.
-  const VisualCollisionBinding binding = bindVisualToCollision(Meniscus.visual, Meniscus.collision);
+  // (A file or a bundle came with its binding.)
+  if (!Tissue.binding)
+  {
+    Tissue.binding = std::make_unique<VisualCollisionBinding>(
+      bindVisualToCollision(Tissue.model.visual, Tissue.model.collision));
+  }
   TissueCutterSettings settings;
   settings.freePieces = FreePieceHandling::HandOver;
-  Cutter = std::make_unique<TissueCutter>(binding, Meniscus.simulation, Fem.get(), settings);
+  Cutter =
+    std::make_unique<TissueCutter>(*Tissue.binding, Tissue.model.simulation, Fem.get(), settings);
   Action = std::make_unique<InstrumentAction>(Instrument);
   // The monitor points in the cutter's hexahedra (a torn tissue's copies).
   buildWrinkles(Cutter->simulation(), Cutter->visual().mesh());
@@ -114,7 +118,7 @@ void TrainingScene::rebuildCollisionMesh()
   const HexahedralEmbedding& embedding = Cutter->collisionEmbedding();
   std::vector<int> newIndex(cut.vertexCount(), -1);
   TriangleMesh active;
-  active.name = Meniscus.collision.name;
+  active.name = Tissue.model.collision.name;
   std::vector<double> radii;
   std::vector<int> hexahedra;
   std::vector<Vector3> local;
@@ -153,13 +157,23 @@ void TrainingScene::rebuildCollisionMesh()
 
 void TrainingScene::buildContacts()
 {
+  Contacts.addTissue(*Fem, *Collision);
+  Contacts.addTool(Tool);
+  // The bones and the cartilage are obstacles for the meniscus and for
+  // tissues brought in; the knee's own ligaments and cartilage are held by
+  // their attachments instead (they lie on the bone).
+  const bool kneePart = Scenario.tissueModel == "anterior_cruciate_ligament" ||
+                        Scenario.tissueModel == "posterior_cruciate_ligament" ||
+                        Scenario.tissueModel == "tibial_cartilage";
+  if (!Scenario.knee || kneePart)
+  {
+    return;
+  }
   Tibia = std::make_unique<StaticObstacle>(Knee.tibia.collision);
   // The cartilage as its reduced thick mid-surface (100 triangles with radii,
   // thesis 5.4.4): against its 5,080-triangle visual surface the contacts of
   // the meniscus resting on it cost 2.5 ms a step.
   Cartilage = std::make_unique<StaticObstacle>(Knee.tibialCartilage.collision);
-  Contacts.addTissue(*Fem, *Collision);
-  Contacts.addTool(Tool);
   Contacts.addObstacle(*Tibia);
   CartilageObstacle = Contacts.addObstacle(*Cartilage);
 }
@@ -228,13 +242,13 @@ void TrainingScene::operate(const HapticToolState& instrument)
 
 const TriangleMesh& TrainingScene::visualMesh() const
 {
-  return Cutter ? Cutter->visual().mesh() : Meniscus.visual;
+  return Cutter ? Cutter->visual().mesh() : Tissue.model.visual;
 }
 
 std::vector<char> TrainingScene::activeVisualTriangles() const
 {
   return Cutter ? Cutter->activeVisualTriangles()
-                : std::vector<char>(Meniscus.visual.triangleCount(), 1);
+                : std::vector<char>(Tissue.model.visual.triangleCount(), 1);
 }
 
 const std::vector<Vector3>& TrainingScene::visualPositions() const

@@ -17,8 +17,8 @@
 #include "HapticServo.h"
 #include "InstrumentAction.h"
 #include "KneeModels.h"
-#include "MeniscusModel.h"
 #include "Scenario.h"
+#include "ScenarioTissue.h"
 #include "ThinTissueSceneModule.h"
 #include "WrinkleGenerator.h"
 
@@ -71,7 +71,7 @@ public:
 
   /// The tissue: its model (rest meshes, as built), the visual surface now
   /// (wrinkles included), whether it wrinkles.
-  const TissueModel& tissue() const { return Meniscus; }
+  const TissueModel& tissue() const { return Tissue.model; }
   /// The visual surface's rest mesh as cut so far (with its cut surfaces;
   /// the model's before any cut); its topology changes when
   /// topologyVersion() does.
@@ -107,7 +107,7 @@ private:
   void updateMetrics(const RigidPose& previousTool, const RigidPose& previousScope);
 
   ScenarioDescription Scenario;
-  MeniscusModel Meniscus;
+  ScenarioTissue Tissue;
   KneeSurroundings Knee;
   SurgicalInstrumentModel Instrument;
   std::unique_ptr<CorotationalHexFem> Fem;

@@ -100,6 +100,19 @@ TEST(TrainingScene, BadScenariosNameTheFileAndTheKey)
   const std::string inward = messageOf(R"({"version": 1, "arthroscope": {"inward": [0, 0, 0]}})");
   EXPECT_NE(inward.find("key 'arthroscope.inward'"), std::string::npos) << inward;
   EXPECT_NE(messageOf("{not json").find("not JSON"), std::string::npos);
+  // Tissue sources: a model by name, a file or bundle with its path, the
+  // nodes held still, wrinkles only where monitor data exist.
+  const std::string model = messageOf(R"({"version": 1, "tissue": {"model": "kidney"}})");
+  EXPECT_NE(model.find("key 'tissue.model'"), std::string::npos) << model;
+  EXPECT_NE(model.find("posterior_cruciate_ligament"), std::string::npos) << model;
+  const std::string file = messageOf(R"({"version": 1, "tissue": {"model": "bundle"}})");
+  EXPECT_NE(file.find("key 'tissue.file'"), std::string::npos) << file;
+  const std::string fixed =
+    messageOf(R"({"version": 1, "tissue": {"model": "sheet", "fixed": "glued"}})");
+  EXPECT_NE(fixed.find("key 'tissue.fixed'"), std::string::npos) << fixed;
+  const std::string wrinkles =
+    messageOf(R"({"version": 1, "tissue": {"model": "sheet", "wrinkles": true}})");
+  EXPECT_NE(wrinkles.find("key 'tissue.wrinkles'"), std::string::npos) << wrinkles;
   EXPECT_THROW(readScenario(Data + "/Scenarios/no-such-scenario.json"), FileError);
   const std::string path =
     (thintissue::testing::temporaryDirectory() / "bad-recording.json").string();
@@ -212,4 +225,28 @@ TEST(TrainingScene, ThePunchScenarioBitesTissueAwayAndReplaysBitForBit)
   ASSERT_TRUE(b.scene.runTo(a.scenario.duration));
   EXPECT_EQ(a.scene.visualPositions(), b.scene.visualPositions());
   EXPECT_EQ(a.scene.metrics().removedVolume, b.scene.metrics().removedVolume);
+}
+
+// Sheet cutting (thesis 5.3, fig. 5-19): the knife drawn across the sheet
+// (held at its left and right edges) a little each step cuts it in two;
+// the far half pressed down moves, the near half stays where it was.
+TEST(TrainingScene, TheKnifeCutsTheSheetInTwoAndTheHalvesMoveApart)
+{
+  const SceneRecording recording = readSceneRecording(Data + "/Recordings/sheet-cutting.json");
+  const ScenarioDescription scenario = readScenario(recording.scenario);
+  EXPECT_FALSE(scenario.knee);
+  ScriptedHapticDevice scope(recording.scope), instrument(recording.instrument);
+  TrainingScene scene(scenario, scope, instrument);
+  ASSERT_TRUE(scene.runTo(scenario.duration)) << scene.lastError();
+  EXPECT_GT(scene.metrics().operations, 2);
+  const std::vector<Vector3>& now = scene.visualPositions();
+  const std::vector<Vector3>& rest = scene.visualMesh().positions;
+  double near = 0.0, far = 0.0;
+  for (std::size_t i = 0; i < now.size(); ++i)
+  {
+    const double moved = (now[i] - rest[i]).norm();
+    (rest[i].x() < 0.0 ? near : far) = std::max(rest[i].x() < 0.0 ? near : far, moved);
+  }
+  EXPECT_GT(far, 3.0);   // mm: pressed down
+  EXPECT_LT(near, 1e-6); // cut free of it
 }
