@@ -58,6 +58,17 @@ vtkSmartPointer<vtkPolyData> withNormals(const TriangleMesh& mesh)
   return toPolyData(copy);
 }
 
+/// Meniscus and tissues brought in: pale, fibrocartilage white; cartilage:
+/// bluish white; ligaments: pink.
+std::array<double, 3> tissueColour(const std::string& model)
+{
+  if (model == "tibial_cartilage")
+    return { 0.82, 0.86, 0.92 };
+  if (model == "anterior_cruciate_ligament" || model == "posterior_cruciate_ligament")
+    return { 0.88, 0.62, 0.58 };
+  return { 0.96, 0.93, 0.88 };
+}
+
 } // namespace
 
 SimulatorView::SimulatorView(const TrainingScene& scene)
@@ -67,7 +78,7 @@ SimulatorView::SimulatorView(const TrainingScene& scene)
   // Synovial red-brown beyond the lit tissue.
   Renderer->SetBackground(0.12, 0.03, 0.02);
   addKnee();
-  Renderer->AddActor(surfaceActor(Tissue, { 0.96, 0.93, 0.88 }, true));
+  Renderer->AddActor(surfaceActor(Tissue, tissueColour(scene.scenario().tissueModel), true));
   // The cut surfaces (5.3.4): the tissue's inside, pinker and less shiny.
   Renderer->AddActor(surfaceActor(CutSurface, { 0.93, 0.78, 0.74 }, false));
   Instrument =

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 using namespace thintissue;
@@ -249,4 +250,28 @@ TEST(TrainingScene, TheKnifeCutsTheSheetInTwoAndTheHalvesMoveApart)
   }
   EXPECT_GT(far, 3.0);   // mm: pressed down
   EXPECT_LT(near, 1e-6); // cut free of it
+}
+
+// Every shipped recording (Data/Recordings, not the key-frame scripts)
+// replays its scenario to the end: no solver failure, every visual vertex
+// finite, the instrument moved.
+TEST(TrainingScene, EveryShippedRecordingReplaysToTheEnd)
+{
+  int replayed = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(Data + "/Recordings"))
+  {
+    const std::string path = entry.path().string();
+    if (entry.path().extension() != ".json" || path.find(".script.") != std::string::npos)
+      continue;
+    const SceneRecording recording = readSceneRecording(path);
+    const ScenarioDescription scenario = readScenario(recording.scenario);
+    ScriptedHapticDevice scope(recording.scope), instrument(recording.instrument);
+    TrainingScene scene(scenario, scope, instrument);
+    ASSERT_TRUE(scene.runTo(scenario.duration)) << path << ": " << scene.lastError();
+    EXPECT_GT(scene.metrics().instrumentPathLength, 5.0) << path;
+    for (const Vector3& x : scene.visualPositions())
+      ASSERT_TRUE(x.allFinite()) << path;
+    ++replayed;
+  }
+  EXPECT_GE(replayed, 5);
 }
