@@ -7,14 +7,16 @@
 //   ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]
 //                       [--snapshots T1,T2,...] [--output DIR]
 //                       [--compare DIR] [--size WxH] [--devices replay|mouse]
-//                       [--record R.json]
+//                       [--record R.json] [--tissue FILE]
 //
 // Defaults: the shipped meniscus examination and its recording; without a
 // display the program re-runs itself under xvfb-run, offscreen. With
 // --devices mouse the mouse and keyboard drive the instrument (with Shift
 // the arthroscope): left drag across, right drag in and out, [ ] roll;
 // --record writes what they did as a recording (up to 5 minutes) that
-// --replay plays back bit for bit.
+// --replay plays back bit for bit. --tissue FILE puts your own tissue in the
+// scenario: a bundle made by ThinTissuePrepare (.ttbundle) or a mesh file
+// prepared as it loads.
 #include "SimulatorView.h"
 #include "SimulatorWindow.h"
 #include "VirtualDisplay.h"
@@ -61,6 +63,7 @@ struct Options
   int height = 480;
   bool mouse = false;
   std::string record;
+  std::string tissue;
 };
 
 void printUsage()
@@ -68,7 +71,22 @@ void printUsage()
   std::cerr
     << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
        "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
-       "                           [--size WxH] [--devices replay|mouse] [--record R.json]\n";
+       "                           [--size WxH] [--devices replay|mouse] [--record R.json]\n"
+       "                           [--tissue BUNDLE.ttbundle|MESH]\n";
+}
+
+/// The scenario with its tissue replaced by the user's: a bundle made by
+/// ThinTissuePrepare or a mesh file prepared as it loads.
+void useTissueFile(ScenarioDescription& scenario, const std::string& path)
+{
+  const bool bundle = path.size() > 9 && path.compare(path.size() - 9, 9, ".ttbundle") == 0;
+  scenario.tissueModel = bundle ? "bundle" : "file";
+  scenario.tissueFile = path;
+  scenario.wrinkles = false;
+  if (scenario.fixedNodes == "model")
+  {
+    scenario.fixedNodes = "bottom";
+  }
 }
 
 bool parseTimes(const std::string& text, std::vector<double>& times)
@@ -122,6 +140,10 @@ bool parseArguments(int argc, char* argv[], Options& o)
     else if (a == "--record" && hasValue)
     {
       o.record = argv[++i];
+    }
+    else if (a == "--tissue" && hasValue)
+    {
+      o.tissue = argv[++i];
     }
     else if (a == "--compare" && hasValue)
     {
@@ -316,8 +338,12 @@ int main(int argc, char* argv[])
   try
   {
     const SceneRecording recording = readSceneRecording(options.replay);
-    const ScenarioDescription scenario =
+    ScenarioDescription scenario =
       readScenario(options.scenario.empty() ? recording.scenario : options.scenario);
+    if (!options.tissue.empty())
+    {
+      useTissueFile(scenario, options.tissue);
+    }
     SessionDevices devices(recording, options);
     TrainingScene scene(scenario, devices.scope(), devices.instrument());
     std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << "), "

@@ -1,6 +1,7 @@
 #include "Scenario.h"
 
 #include "AtomicFileWriter.h"
+#include "LengthUnits.h"
 #include "ThinTissueError.h"
 
 #include <nlohmann/json.hpp>
@@ -172,6 +173,11 @@ void readTissueSource(const ScenarioReader& r, ScenarioDescription& s)
     r.fail("tissue.file", "a \"" + s.tissueModel + "\" tissue needs its file");
   }
   s.tissueFile = besideScenario(s.source, s.tissueFile);
+  s.tissueUnits = r.text("tissue.units", "");
+  if (!s.tissueUnits.empty() && !lengthUnitsNamed(s.tissueUnits))
+  {
+    r.fail("tissue.units", "unknown unit '" + s.tissueUnits + "' (mm, cm, m, um)");
+  }
   s.fixedNodes = r.text("tissue.fixed", s.fixedNodes);
   if (s.fixedNodes != "model" && s.fixedNodes != "none" && s.fixedNodes != "ends" &&
       s.fixedNodes != "bottom")
@@ -180,6 +186,7 @@ void readTissueSource(const ScenarioReader& r, ScenarioDescription& s)
   }
   s.sheetSize = r.vector("tissue.size", s.sheetSize);
   s.knee = r.flag("knee", s.knee);
+  s.portalsFromTissueCentre = r.flag("portalsFromTissueCentre", s.portalsFromTissueCentre);
 }
 
 void readTissue(const ScenarioReader& r, ScenarioDescription& s)

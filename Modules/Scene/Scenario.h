@@ -39,6 +39,9 @@ struct ScenarioDescription
   /// "file" and "bundle": the path (relative paths are relative to the
   /// scenario file).
   std::string tissueFile;
+  /// "file": the mesh's length unit ("mm", "cm", "m", "um"); empty:
+  /// detected from its size (LengthUnits.h). The scene works in mm.
+  std::string tissueUnits;
   /// Nodes held still: "model" (the procedural model's own attachments;
   /// none for files and bundles), "none", "ends" (both ends of the longest
   /// side, 5 % of it each) or "bottom" (the lowest 10 % of the height).
@@ -48,6 +51,10 @@ struct ScenarioDescription
   /// Whether the knee (bones, cartilage, ligaments) is there: off for a
   /// tissue on the bench (sheet, steak).
   bool knee = true;
+  /// Portals given from the tissue's centre (its bounding box's) rather than
+  /// the world origin: a scenario for any tissue brought in ("your own
+  /// tissue"), its recording replaying around wherever the tissue lies.
+  bool portalsFromTissueCentre = false;
   MeniscusTearType tear = MeniscusTearType::None;
   bool examinationResolution = true;
   bool wrinkles = true;

@@ -29,14 +29,41 @@ TissueModel fromBundle(TissueBundle bundle, ScenarioTissue& tissue)
   return model;
 }
 
+/// A mesh file in millimetres (the scene's unit), prepared.
+TissueBundle preparedMesh(const std::string& path, const std::string& units)
+{
+  TriangleMesh mesh = readTriangleMesh(path);
+  const double largest = mesh.boundingBox().sizes().maxCoeff();
+  const LengthUnits unit =
+    units.empty() ? detectLengthUnits(largest).units : *lengthUnitsNamed(units);
+  const double toMillimetres = unit.metresPerUnit / 0.001;
+  for (Vector3& x : mesh.positions)
+    x *= toMillimetres;
+  TissuePreparationSettings settings;
+  settings.units = lengthUnitsNamed("mm");
+  return prepareTissue(mesh, settings);
+}
+
+TissueBundle bundleInMillimetres(const std::string& path)
+{
+  TissueBundle bundle = readTissueBundle(path);
+  if (bundle.units && bundle.units->name != "mm")
+  {
+    throw InvalidInputError("the bundle is in " + bundle.units->description() +
+                            "; the scene works in millimetres: prepare it with --units mm "
+                            "(ThinTissuePrepare --scale converts)");
+  }
+  return bundle;
+}
+
 TissueModel preparedFile(const ScenarioDescription& s, ScenarioTissue& tissue)
 {
   const std::string where = "scenario '" + s.source + "': key 'tissue.file': ";
   try
   {
     if (s.tissueModel == "bundle")
-      return fromBundle(readTissueBundle(s.tissueFile), tissue);
-    return fromBundle(prepareTissue(readTriangleMesh(s.tissueFile)), tissue);
+      return fromBundle(bundleInMillimetres(s.tissueFile), tissue);
+    return fromBundle(preparedMesh(s.tissueFile, s.tissueUnits), tissue);
   }
   catch (const FileError& e)
   {

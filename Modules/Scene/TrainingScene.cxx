@@ -50,10 +50,16 @@ TrainingScene::TrainingScene(const ScenarioDescription& scenario,
     Tool.addCapsule(segment.end, segment.start, segment.radius);
   }
   buildTissue();
+  if (Scenario.portalsFromTissueCentre)
+  {
+    const Vector3 centre = Tissue.model.visual.boundingBox().center();
+    Scenario.instrumentPortal.portal += centre;
+    Scenario.scopePortal.portal += centre;
+  }
   buildContacts();
   Servo = std::make_unique<HapticServo>(
-    std::vector<HapticSlot>{ HapticSlot{ &scope, portalOf(scenario.scopePortal), false },
-      HapticSlot{ &instrument, portalOf(scenario.instrumentPortal), true } });
+    std::vector<HapticSlot>{ HapticSlot{ &scope, portalOf(Scenario.scopePortal), false },
+      HapticSlot{ &instrument, portalOf(Scenario.instrumentPortal), true } });
   Servo->tick(0.0);
   Tool.setPose(Servo->latestToolState(1).pose);
   ScopePose = Servo->latestToolState(0).pose;

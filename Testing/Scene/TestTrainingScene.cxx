@@ -4,8 +4,10 @@
 // recording files validated with the file and the key named.
 #include "MouseHapticDevice.h"
 #include "ScriptedHapticDevice.h"
+#include "ThinSheetModel.h"
 #include "ThinTissueError.h"
 #include "ThinTissueTestSupport.h"
+#include "TissueBundle.h"
 #include "TrainingScene.h"
 
 #include <gtest/gtest.h>
@@ -274,4 +276,36 @@ TEST(TrainingScene, EveryShippedRecordingReplaysToTheEnd)
     ++replayed;
   }
   EXPECT_GE(replayed, 5);
+}
+
+// "Your own tissue": a bundle made by the preparation (here from the thin
+// sheet's visual surface alone), named by the shipped scenario, replaying
+// the sheet's knife strokes around wherever it lies: it is cut.
+TEST(TrainingScene, YourOwnTissueFromABundleIsCut)
+{
+  ThinSheetParameters sheet;
+  sheet.width = 60.0;
+  sheet.depth = 60.0;
+  TriangleMesh visual = makeThinSheet(sheet).visual;
+  for (Vector3& x : visual.positions)
+    x += Vector3(100.0, -40.0, 7.0); // anywhere: the portals follow its centre
+  TissuePreparationSettings settings;
+  settings.units = lengthUnitsNamed("mm");
+  const std::string bundle =
+    (thintissue::testing::temporaryDirectory() / "own-sheet.ttbundle").string();
+  writeTissueBundle(bundle, prepareTissue(visual, settings));
+
+  ScenarioDescription scenario = readScenario(Data + "/Scenarios/your-own-tissue.json");
+  EXPECT_TRUE(scenario.portalsFromTissueCentre);
+  scenario.tissueFile = bundle;
+  const SceneRecording recording = readSceneRecording(Data + "/Recordings/sheet-cutting.json");
+  ScriptedHapticDevice scope(recording.scope), instrument(recording.instrument);
+  TrainingScene scene(scenario, scope, instrument);
+  ASSERT_TRUE(scene.runTo(scenario.duration)) << scene.lastError();
+  EXPECT_GT(scene.metrics().operations, 2);
+  EXPECT_GT(scene.cutter()->collision().vertexCount(), scene.tissue().collision.vertexCount());
+
+  // A bundle that is not there is refused (the scenario and key named).
+  scenario.tissueFile = Data + "/Scenarios/no-such.ttbundle";
+  EXPECT_THROW(TrainingScene(scenario, scope, instrument), InvalidInputError);
 }
