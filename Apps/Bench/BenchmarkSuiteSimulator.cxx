@@ -49,7 +49,7 @@ void replayScenario(const std::string& recordingPath,
     " hexahedra";
   reporter.report(name, "physics step median", percentile(steps, 0.5) * 1e3, "ms", 6.5);
   reporter.report(name, "physics step 99th percentile", percentile(steps, 0.99) * 1e3, "ms");
-  if (scene.cutter())
+  if (scene.cutter() && scene.metrics().operations > 0) // (a quick run may end before one)
   {
     reporter.report(name, "slowest step with a cut", slowestCut * 1e3, "ms");
     reporter.report(name, "operations", scene.metrics().operations, "cuts");
