@@ -1,11 +1,14 @@
 #include "SimulatorWindow.h"
 
 #include <QComboBox>
+#include <QDateTime>
 #include <QDir>
 #include <QDockWidget>
 #include <QFileInfo>
 #include <QLabel>
 #include <QMessageBox>
+#include <QPushButton>
+#include <QStatusBar>
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
 
@@ -44,6 +47,26 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene,
   Scenarios = new QComboBox(panel);
   Scenarios->setEnabled(false);
   layout->addWidget(Scenarios);
+  Instruments = new QComboBox(panel);
+  for (SurgicalInstrumentType type : allSurgicalInstrumentTypes())
+  {
+    const QString name = QString::fromStdString(instrumentTypeName(type));
+    Instruments->addItem(name, name);
+  }
+  Instruments->setEnabled(false);
+  layout->addWidget(Instruments);
+  auto* shot = new QPushButton("Screenshot", panel);
+  layout->addWidget(shot);
+  connect(shot,
+    &QPushButton::clicked,
+    this,
+    [this]
+    {
+      const QString name =
+        QString("thintissue-%1.png").arg(QDateTime::currentDateTime().toString("yyyyMMdd-hhmmss"));
+      if (screenshot(name.toStdString()))
+        statusBar()->showMessage("picture written to " + name, 5000);
+    });
   ScenarioText = new QLabel(panel);
   ScenarioText->setWordWrap(true);
   layout->addWidget(ScenarioText);
@@ -77,6 +100,8 @@ void SimulatorWindow::showScene()
   overview->SetLayer(1);
   window->AddRenderer(overview);
   const ScenarioDescription& s = Scene->scenario();
+  Instruments->setCurrentIndex(
+    Instruments->findData(QString::fromStdString(instrumentTypeName(s.instrument))));
   setWindowTitle(QString("ThinTissue simulator - %1").arg(QString::fromStdString(s.name)));
   ScenarioText->setText(
     QString("<b>%1</b><br>%2")
@@ -101,9 +126,30 @@ void SimulatorWindow::setScenarios(const std::string& directory, SceneFactory fa
     QOverload<int>::of(&QComboBox::activated),
     this,
     [this](int index) { loadScenario(Scenarios->itemData(index).toString().toStdString()); });
+  Instruments->setEnabled(true);
+  connect(Instruments,
+    QOverload<int>::of(&QComboBox::activated),
+    this,
+    [this](int index) {
+      loadScenario(Scene->scenario().source, Instruments->itemData(index).toString().toStdString());
+    });
 }
 
-bool SimulatorWindow::loadScenario(const std::string& path)
+bool SimulatorWindow::screenshot(const std::string& path)
+{
+  try
+  {
+    SimulatorView::writePicture(Widget->renderWindow(), path);
+    return true;
+  }
+  catch (const std::exception& error)
+  {
+    QMessageBox::warning(this, "Screenshot", QString::fromStdString(error.what()));
+    return false;
+  }
+}
+
+bool SimulatorWindow::loadScenario(const std::string& path, const std::string& instrument)
 {
   if (!Factory)
   {
@@ -111,7 +157,7 @@ bool SimulatorWindow::loadScenario(const std::string& path)
   }
   try
   {
-    std::unique_ptr<TrainingScene> next = Factory(path);
+    std::unique_ptr<TrainingScene> next = Factory(path, instrument);
     Owned.swap(next); // the old one (if owned) goes after the view is rebuilt
     Scene = Owned.get();
     showScene();
@@ -130,6 +176,8 @@ bool SimulatorWindow::loadScenario(const std::string& path)
     const int current = Scenarios->findData(
       QFileInfo(QString::fromStdString(Scene->scenario().source)).absoluteFilePath());
     Scenarios->setCurrentIndex(current);
+    Instruments->setCurrentIndex(Instruments->findData(
+      QString::fromStdString(instrumentTypeName(Scene->scenario().instrument))));
     return false;
   }
 }
@@ -153,13 +201,16 @@ void SimulatorWindow::showMetrics()
 {
   const SceneMetrics& m = Scene->metrics();
   Metrics->setText(QString("time %1 s<br>instrument path %2 mm<br>camera path %3 mm<br>"
-                           "peak force %4 N<br>cartilage contacts %5 steps<br>%6")
+                           "peak force %4 N<br>cartilage contacts %5 steps<br>"
+                           "cuts and bites %7, removed %8 mm&sup3;<br>%6")
                      .arg(m.time, 0, 'f', 2)
                      .arg(m.instrumentPathLength, 0, 'f', 1)
                      .arg(m.cameraPathLength, 0, 'f', 1)
                      .arg(m.peakForce, 0, 'f', 2)
                      .arg(m.cartilageContactSteps)
-                     .arg(Scene->wrinkling() ? "<b>wrinkling</b>" : ""));
+                     .arg(Scene->wrinkling() ? "<b>wrinkling</b>" : "")
+                     .arg(m.operations)
+                     .arg(m.removedVolume, 0, 'f', 1));
 }
 
 } // namespace thintissue

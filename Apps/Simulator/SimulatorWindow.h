@@ -31,14 +31,19 @@ public:
   /// them and the run has no end; otherwise the scene replays its recording.
   SimulatorWindow(TrainingScene& scene, MouseHapticDevice* scope, MouseHapticDevice* instrument);
 
-  /// Makes a scene from a scenario file with the window's devices (throws
-  /// on a scenario it cannot build).
-  using SceneFactory = std::function<std::unique_ptr<TrainingScene>(const std::string&)>;
-  /// Offers the scenario files of `directory` to choose from.
+  /// Makes a scene from a scenario file with the window's devices, with
+  /// another instrument when `instrument` names one ("" : the scenario's);
+  /// throws on a scenario it cannot build.
+  using SceneFactory = std::function<std::unique_ptr<TrainingScene>(const std::string& path,
+    const std::string& instrument)>;
+  /// Offers the scenario files of `directory` and the instruments to
+  /// choose from.
   void setScenarios(const std::string& directory, SceneFactory factory);
-  /// Starts the scenario in `path`; on failure says why in a dialog, keeps
-  /// the running one and returns false.
-  bool loadScenario(const std::string& path);
+  /// Starts the scenario in `path` (with `instrument`, if not empty); on
+  /// failure says why in a dialog, keeps the running one and returns false.
+  bool loadScenario(const std::string& path, const std::string& instrument = "");
+  /// Writes the window's picture (PNG); false if it could not.
+  bool screenshot(const std::string& path);
   const TrainingScene& scene() const { return *Scene; }
 
 private:
@@ -50,6 +55,7 @@ private:
   std::unique_ptr<TrainingScene> Owned;
   SceneFactory Factory;
   QComboBox* Scenarios = nullptr;
+  QComboBox* Instruments = nullptr;
   QLabel* ScenarioText = nullptr;
   std::unique_ptr<SimulatorView> View;
   QVTKOpenGLNativeWidget* Widget = nullptr;

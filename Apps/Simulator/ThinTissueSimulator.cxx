@@ -349,10 +349,13 @@ int main(int argc, char* argv[])
     std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << "), "
               << (options.mouse ? "mouse and keyboard" : "recording " + options.replay) << "\n";
     // Another scenario, chosen in the window, with the same devices.
-    const SimulatorWindow::SceneFactory factory = [&](const std::string& path)
+    const SimulatorWindow::SceneFactory factory =
+      [&](const std::string& path, const std::string& tool)
     {
-      return std::make_unique<TrainingScene>(
-        readScenario(path), devices.scope(), devices.instrument());
+      ScenarioDescription next = readScenario(path);
+      if (!tool.empty())
+        next.instrument = parseSurgicalInstrumentType(tool);
+      return std::make_unique<TrainingScene>(next, devices.scope(), devices.instrument());
     };
     const int status =
       options.offscreen

@@ -8,6 +8,7 @@
 #include "TrainingScene.h"
 
 #include <QApplication>
+#include <QFileInfo>
 #include <QLabel>
 #include <QSurfaceFormat>
 #include <QTimer>
@@ -46,9 +47,14 @@ int main(int argc, char* argv[])
     });
   // A scenario that cannot load leaves the running one; a good one starts.
   window.setScenarios(std::string(THINTISSUE_DATA_DIR) + "/Scenarios",
-    [&](const std::string& path)
-    { return std::make_unique<TrainingScene>(readScenario(path), scope, instrument); });
-  bool badRefused = false, tornLoaded = false;
+    [&](const std::string& path, const std::string& tool)
+    {
+      ScenarioDescription next = readScenario(path);
+      if (!tool.empty())
+        next.instrument = parseSurgicalInstrumentType(tool);
+      return std::make_unique<TrainingScene>(next, scope, instrument);
+    });
+  bool badRefused = false, tornLoaded = false, punchLoaded = false, pictured = false;
   QTimer::singleShot(1000,
     [&]
     {
@@ -57,8 +63,31 @@ int main(int argc, char* argv[])
       tornLoaded = window.loadScenario(
         std::string(THINTISSUE_DATA_DIR) + "/Scenarios/meniscus-examination-radial.json");
     });
-  QTimer::singleShot(1500, &application, &QApplication::quit);
+  // The same scenario with the punch instead of the hook: it can cut.
+  QTimer::singleShot(1200,
+    [&]
+    {
+      const std::string radial = window.scene().scenario().source;
+      punchLoaded = window.loadScenario(radial, "punch") &&
+                    window.scene().instrumentModel().type == SurgicalInstrumentType::Punch &&
+                    window.scene().cutter() != nullptr;
+      const std::string picture = "simulator-window-screenshot.png";
+      pictured = window.screenshot(picture) && QFileInfo(picture.c_str()).size() > 1000;
+    });
+  // Quit once the punch scene has run a little (its binding takes a while
+  // on a loaded machine), or after 20 s.
+  QTimer watch;
+  QObject::connect(&watch,
+    &QTimer::timeout,
+    [&]
+    {
+      if (punchLoaded && window.scene().time() > 0.1)
+        application.quit();
+    });
+  watch.start(50);
+  QTimer::singleShot(20000, &application, &QApplication::quit);
   application.exec();
+  std::cout << "punch loaded " << punchLoaded << ", screenshot " << pictured << "\n";
   std::cout << "bad scenario refused " << badRefused << ", torn scenario loaded " << tornLoaded
             << " (" << window.scene().scenario().name << ", at " << window.scene().time()
             << " s)\n";
@@ -67,7 +96,7 @@ int main(int argc, char* argv[])
             << " mm\n";
   const bool ran = scene.time() > 0.3;
   const bool followed = moved.norm() > 5.0;
-  const bool switched = badRefused && tornLoaded &&
+  const bool switched = badRefused && tornLoaded && punchLoaded && pictured &&
                         window.scene().scenario().tear == MeniscusTearType::Radial &&
                         window.scene().time() > 0.0;
   return ran && followed && switched ? EXIT_SUCCESS : EXIT_FAILURE;
