@@ -269,6 +269,12 @@ ScenarioDescription parseScenario(const std::string& text, const std::string& so
   s.timeStep = r.number("physics.timeStep", s.timeStep);
   s.task = r.text("task.kind", s.task);
   s.duration = r.number("task.duration", s.duration);
+  s.targetCentre = r.vector("task.target.centre", s.targetCentre);
+  s.targetRadius = r.number("task.target.radius", s.targetRadius, false);
+  if (s.targetRadius < 0.0)
+  {
+    r.fail("task.target.radius", "must not be negative");
+  }
   return s;
 }
 

@@ -70,6 +70,10 @@ struct ScenarioDescription
   /// "examination", ...; the run's length in seconds.
   std::string task = "examination";
   double duration = 5.0;
+  /// The region the task should remove (a ball; radius 0: none): the
+  /// metrics split the removed volume into inside and outside it.
+  Vector3 targetCentre = Vector3::Zero();
+  double targetRadius = 0.0;
 };
 
 /// Throws InvalidInputError "scenario '<source>': key '<key>': <problem>"

@@ -239,6 +239,16 @@ void TrainingScene::operate(const HapticToolState& instrument)
   ++TopologyVersion;
   ++Metrics.operations;
   Metrics.removedVolume += done.removedVolume;
+  for (const TissuePiece& piece : done.report.handedOver)
+  {
+    Vector3 centre = Vector3::Zero();
+    for (const Vector3& x : piece.visualRest)
+      centre += x;
+    centre /= static_cast<double>(std::max<std::size_t>(1, piece.visualRest.size()));
+    const bool inTarget = Scenario.targetRadius > 0.0 &&
+                          (centre - Scenario.targetCentre).norm() <= Scenario.targetRadius;
+    (inTarget ? Metrics.removedInTarget : Metrics.removedOutsideTarget) += restVolume(piece);
+  }
   if (Wrinkles)
   {
     Wrinkles->followCut(*Cutter, done.report);
@@ -312,7 +322,9 @@ std::string TrainingScene::metricsJson() const
     { "peak_force_N", Metrics.peakForce },
     { "wrinkling_steps", Metrics.wrinklingSteps },
     { "operations", Metrics.operations },
-    { "removed_volume_mm3", Metrics.removedVolume } };
+    { "removed_volume_mm3", Metrics.removedVolume },
+    { "removed_in_target_mm3", Metrics.removedInTarget },
+    { "removed_outside_target_mm3", Metrics.removedOutsideTarget } };
   return j.dump(2);
 }
 

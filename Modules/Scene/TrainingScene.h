@@ -43,6 +43,10 @@ struct SceneMetrics
   /// volume they removed (mm^3).
   int operations = 0;
   double removedVolume = 0.0;
+  /// Of it, the pieces whose centre lies in the task's target region (and
+  /// the rest: tissue that should have stayed).
+  double removedInTarget = 0.0;
+  double removedOutsideTarget = 0.0;
 };
 
 class THINTISSUESCENE_EXPORT TrainingScene

@@ -113,6 +113,9 @@ TEST(TrainingScene, BadScenariosNameTheFileAndTheKey)
   const std::string fixed =
     messageOf(R"({"version": 1, "tissue": {"model": "sheet", "fixed": "glued"}})");
   EXPECT_NE(fixed.find("key 'tissue.fixed'"), std::string::npos) << fixed;
+  const std::string target =
+    messageOf(R"({"version": 1, "task": {"target": {"centre": [0, 0, 0], "radius": -1}}})");
+  EXPECT_NE(target.find("key 'task.target.radius'"), std::string::npos) << target;
   const std::string wrinkles =
     messageOf(R"({"version": 1, "tissue": {"model": "sheet", "wrinkles": true}})");
   EXPECT_NE(wrinkles.find("key 'tissue.wrinkles'"), std::string::npos) << wrinkles;
@@ -214,6 +217,10 @@ TEST(TrainingScene, ThePunchScenarioBitesTissueAwayAndReplaysBitForBit)
   EXPECT_GE(m.operations, 3);
   EXPECT_EQ(a.scene.topologyVersion(), m.operations);
   EXPECT_GT(m.removedVolume, 5.0); // mm^3: pieces went
+  // The bites lie in the task's target region (the torn fragment).
+  EXPECT_GT(a.scenario.targetRadius, 0.0);
+  EXPECT_NEAR(m.removedInTarget + m.removedOutsideTarget, m.removedVolume, 1e-9);
+  EXPECT_GT(m.removedInTarget, 0.9 * m.removedVolume);
   EXPECT_NE(a.scene.cutter()->activeTriangleCount(), before);
   // Every visual vertex has a position; the drawn triangles exclude the
   // removed pieces'.
