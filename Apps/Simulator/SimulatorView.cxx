@@ -256,6 +256,7 @@ void SimulatorView::update()
     matrix->SetElement(r, 3, tool.translation[r]);
   }
   Instrument->SetUserMatrix(matrix);
+  showJaws();
   // The arthroscope: eye at the scope tip, VTK's headlight there too.
   const ArthroscopeView view = arthroscopeView(Scene.scopePose(), Scene.scenario().viewingAngle);
   vtkCamera* camera = Renderer->GetActiveCamera();
@@ -273,6 +274,24 @@ void SimulatorView::update()
     ScopeShaft->GetPoints()->Modified();
     Overview->ResetCameraClippingRange();
   }
+}
+
+void SimulatorView::showJaws()
+{
+  // The punch's and the scissors' jaws drawn as open as the scene has them
+  // (remade only when they moved by a twentieth of their travel).
+  const SurgicalInstrumentType type = Scene.instrumentModel().type;
+  const bool jaws =
+    type == SurgicalInstrumentType::Punch || type == SurgicalInstrumentType::Scissors;
+  if (!jaws || std::abs(Scene.jawOpening() - JawsShown) < 0.05)
+  {
+    return;
+  }
+  SurgicalInstrumentParameters parameters = Scene.instrumentModel().parameters;
+  parameters.jawOpeningDegrees *= Scene.jawOpening();
+  auto* mapper = vtkPolyDataMapper::SafeDownCast(Instrument->GetMapper());
+  mapper->SetInputData(withNormals(makeSurgicalInstrument(parameters).visual));
+  JawsShown = Scene.jawOpening();
 }
 
 void SimulatorView::rebuildTissue()

@@ -37,6 +37,7 @@ public:
 private:
   void addKnee();
   void rebuildTissue();
+  void showJaws();
   void addRoundFieldOfView();
   void placeRing(double aspect);
   static constexpr int RingSegments = 96;
@@ -55,6 +56,7 @@ private:
   std::vector<Vector3> ComputedRestNormals;
   vtkSmartPointer<vtkActor> Instrument;
   vtkSmartPointer<vtkActor> Femur;
+  double JawsShown = 1.0; ///< jaw opening of the instrument drawn
   vtkSmartPointer<vtkPolyData> Ring;
   vtkSmartPointer<vtkRenderer> Overview;
   vtkSmartPointer<vtkPolyData> ScopeShaft;
