@@ -115,7 +115,8 @@ Blade InstrumentAction::shaverBite(const RigidPose& pose) const
     placedOutline(Model.biteOutline, pose, -reach), placedOutline(Model.biteOutline, pose, reach));
 }
 
-Blade InstrumentAction::scissorsStroke(const InstrumentCommand& command) const
+Blade InstrumentAction::scissorsStroke(const InstrumentCommand& before,
+  const InstrumentCommand& now) const
 {
   // The fixed blade's edge runs from its point to the hinge. The blades
   // turn about the hinge's pin (the tool's side axis): passing the pin axis
@@ -135,21 +136,42 @@ Blade InstrumentAction::scissorsStroke(const InstrumentCommand& command) const
     s.halfHeight = Settings.scissorsHalfHeight;
     return s;
   };
-  return scissorsBlade(poseAt(Previous), poseAt(command));
+  return scissorsBlade(poseAt(before), poseAt(now));
 }
 
-Blade InstrumentAction::scalpelStroke(const InstrumentCommand& command) const
+Blade InstrumentAction::scalpelStroke(const InstrumentCommand& before,
+  const InstrumentCommand& now) const
 {
   const Vector3& point = Model.cuttingEdge.front();
   const Vector3& heel = Model.cuttingEdge.back();
-  const Vector3 a0 = Previous.pose * point, b0 = Previous.pose * heel;
-  const Vector3 a1 = command.pose * point, b1 = command.pose * heel;
+  const Vector3 a0 = before.pose * point, b0 = before.pose * heel;
+  const Vector3 a1 = now.pose * point, b1 = now.pose * heel;
   // An edge that did not sweep any area this step cuts nothing.
   if (sweptArea(a0, b0, a1, b1) <= 1e-9 * (b0 - a0).squaredNorm())
   {
     return {};
   }
   return Blade::sweptSegment(a0, b0, a1, b1);
+}
+
+Blade InstrumentAction::bladeBetween(const InstrumentCommand& before,
+  const InstrumentCommand& now) const
+{
+  switch (Model.type)
+  {
+    case SurgicalInstrumentType::Punch:
+      return punchBite(now.pose);
+    case SurgicalInstrumentType::SmallShaver:
+    case SurgicalInstrumentType::LargeShaver:
+      return shaverBite(now.pose);
+    case SurgicalInstrumentType::Scissors:
+      return scissorsStroke(before, now);
+    case SurgicalInstrumentType::Scalpel:
+      return scalpelStroke(before, now);
+    case SurgicalInstrumentType::ProbeHook:
+      break;
+  }
+  return {};
 }
 
 bool InstrumentAction::jawsJustClosed(const InstrumentCommand& command) const
@@ -172,12 +194,12 @@ Blade InstrumentAction::bladeFor(const InstrumentCommand& command, OperationKind
       if (command.jawOpening >= Previous.jawOpening)
         return {};
       kind = OperationKind::Cut;
-      return scissorsStroke(command);
+      return scissorsStroke(Previous, command);
     case SurgicalInstrumentType::Scalpel:
       if (!command.working || !Previous.working)
         return {};
       kind = OperationKind::Cut;
-      return scalpelStroke(command);
+      return scalpelStroke(Previous, command);
     case SurgicalInstrumentType::SmallShaver:
     case SurgicalInstrumentType::LargeShaver:
       if (!command.working || command.time - LastShave < Settings.shaverBitePeriod)

