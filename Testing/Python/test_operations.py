@@ -1,7 +1,7 @@
 """Surgical operations from Python (thesis 6.4): the basket punch's bite at
 the meniscus's inner border, made by vtkInstrumentBladeSource and given to
 vtkThinTissueCutFilter with free pieces dropped, takes a piece out; the
-probe hook makes no blade; a bad instrument is reported."""
+probe hook makes no blade."""
 import math
 import unittest
 
