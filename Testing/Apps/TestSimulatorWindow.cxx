@@ -33,19 +33,6 @@ int main(int argc, char* argv[])
   SimulatorWindow window(scene, &scope, &instrument);
   window.show();
   const Vector3 start = scene.instrumentPose().translation;
-  // After 0.3 s a left drag of 50 pixels to the right: 10 mm of stylus.
-  QTimer::singleShot(300,
-    [&]
-    {
-      auto* widget = window.findChild<QVTKOpenGLNativeWidget*>();
-      vtkRenderWindowInteractor* interactor = widget->interactor();
-      interactor->SetEventInformation(100, 100);
-      interactor->InvokeEvent(vtkCommand::LeftButtonPressEvent);
-      interactor->SetEventInformation(150, 100);
-      interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
-      interactor->InvokeEvent(vtkCommand::LeftButtonReleaseEvent);
-    });
-  // A scenario that cannot load leaves the running one; a good one starts.
   window.setScenarios(std::string(THINTISSUE_DATA_DIR) + "/Scenarios",
     [&](const std::string& path, const std::string& tool)
     {
@@ -55,37 +42,56 @@ int main(int argc, char* argv[])
       return std::make_unique<TrainingScene>(next, scope, instrument);
     });
   bool badRefused = false, tornLoaded = false, punchLoaded = false, pictured = false;
-  QTimer::singleShot(1000,
-    [&]
-    {
-      badRefused = !window.loadScenario(std::string(THINTISSUE_DATA_DIR) + "/no-such.json") &&
-                   &window.scene() == &scene;
-      tornLoaded = window.loadScenario(
-        std::string(THINTISSUE_DATA_DIR) + "/Scenarios/meniscus-examination-radial.json");
-    });
-  // The same scenario with the punch instead of the hook: it can cut.
-  QTimer::singleShot(1200,
-    [&]
-    {
-      const std::string radial = window.scene().scenario().source;
-      punchLoaded = window.loadScenario(radial, "punch") &&
-                    window.scene().instrumentModel().type == SurgicalInstrumentType::Punch &&
-                    window.scene().cutter() != nullptr;
-      const std::string picture = "simulator-window-screenshot.png";
-      pictured = window.screenshot(picture) && QFileInfo(picture.c_str()).size() > 1000;
-    });
-  // Quit once the punch scene has run a little (its binding takes a while
-  // on a loaded machine), or after 20 s.
+  // Each stage waits for the scene to have run (a loaded machine delays
+  // Qt's timers; stages on fixed times could run back to back).
+  int stage = 0;
+  double dragTime = 0.0;
   QTimer watch;
   QObject::connect(&watch,
     &QTimer::timeout,
     [&]
     {
-      if (punchLoaded && window.scene().time() > 0.1)
+      if (stage == 0 && scene.time() > 0.2)
+      {
+        // A left drag of 50 pixels to the right: 10 mm of stylus.
+        auto* widget = window.findChild<QVTKOpenGLNativeWidget*>();
+        vtkRenderWindowInteractor* interactor = widget->interactor();
+        interactor->SetEventInformation(100, 100);
+        interactor->InvokeEvent(vtkCommand::LeftButtonPressEvent);
+        interactor->SetEventInformation(150, 100);
+        interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
+        interactor->InvokeEvent(vtkCommand::LeftButtonReleaseEvent);
+        dragTime = scene.time();
+        stage = 1;
+      }
+      else if (stage == 1 && scene.time() > dragTime + 0.3)
+      {
+        // A scenario that cannot load leaves the running one; a good one
+        // starts.
+        badRefused = !window.loadScenario(std::string(THINTISSUE_DATA_DIR) + "/no-such.json") &&
+                     &window.scene() == &scene;
+        tornLoaded = window.loadScenario(
+          std::string(THINTISSUE_DATA_DIR) + "/Scenarios/meniscus-examination-radial.json");
+        stage = 2;
+      }
+      else if (stage == 2)
+      {
+        // The same scenario with the punch instead of the hook: it can cut.
+        const std::string radial = window.scene().scenario().source;
+        punchLoaded = window.loadScenario(radial, "punch") &&
+                      window.scene().instrumentModel().type == SurgicalInstrumentType::Punch &&
+                      window.scene().cutter() != nullptr;
+        const std::string picture = "simulator-window-screenshot.png";
+        pictured = window.screenshot(picture) && QFileInfo(picture.c_str()).size() > 1000;
+        stage = 3;
+      }
+      else if (stage == 3 && window.scene().time() > 0.1)
+      {
         application.quit();
+      }
     });
   watch.start(50);
-  QTimer::singleShot(20000, &application, &QApplication::quit);
+  QTimer::singleShot(60000, &application, &QApplication::quit);
   application.exec();
   std::cout << "punch loaded " << punchLoaded << ", screenshot " << pictured << "\n";
   std::cout << "bad scenario refused " << badRefused << ", torn scenario loaded " << tornLoaded
