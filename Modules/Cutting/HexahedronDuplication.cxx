@@ -142,13 +142,19 @@ int HexahedralBranches::copyHolding(int h, int triangle) const
 }
 
 void HexahedralBranches::assignPieces(const CuttableCollisionMesh& collision,
-  const CollisionCutResult& cut)
+  const CollisionCutResult& cut,
+  std::vector<int>& touched)
 {
   TriangleHexes.resize(collision.triangleCount());
   for (const auto& split : cut.splits)
   {
     // The parent's index is the first piece's: take its hexahedra first.
+    // Each of them is touched, also one that no piece meets (a piece is
+    // grown by the largest radius of its own corners, often less than the
+    // parent's): it lost the parent, and with it perhaps what joined its
+    // other triangles into one branch.
     const std::vector<int> parentHexes = TriangleHexes[split.parent];
+    touched.insert(touched.end(), parentHexes.begin(), parentHexes.end());
     for (int h : parentHexes)
     {
       eraseValue(HexTriangles[h], split.parent);
@@ -285,8 +291,8 @@ HexahedronDuplicationResult HexahedralBranches::update(const CuttableCollisionMe
   const CollisionCutResult& cut,
   HexahedralMesh& mesh)
 {
-  assignPieces(collision, cut);
   std::vector<int> touched;
+  assignPieces(collision, cut, touched);
   for (int t : cut.changedTriangles)
   {
     touched.insert(touched.end(), TriangleHexes[t].begin(), TriangleHexes[t].end());

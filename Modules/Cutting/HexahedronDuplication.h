@@ -73,7 +73,9 @@ private:
   HexahedronDuplicationResult duplicate(const CuttableCollisionMesh& collision,
     std::vector<int> touched,
     HexahedralMesh& mesh);
-  void assignPieces(const CuttableCollisionMesh& collision, const CollisionCutResult& cut);
+  void assignPieces(const CuttableCollisionMesh& collision,
+    const CollisionCutResult& cut,
+    std::vector<int>& touched);
   void splitBranches(const CuttableCollisionMesh& collision,
     int h,
     HexahedralMesh& mesh,

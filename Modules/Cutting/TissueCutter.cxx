@@ -63,10 +63,16 @@ TissueCutter::TissueCutter(const VisualCollisionBinding& binding,
   VisualSeen.reserve(Visual.mesh().positions.capacity());
   VisualSeen.assign(Visual.mesh().vertexCount(), 0);
   VisualOfHexahedron.resize(Simulation.hexahedronCount());
+  VisualIndirect.reserve(Visual.mesh().positions.capacity());
+  VisualIndirect.assign(Visual.mesh().vertexCount(), 0);
+  WatchedIn.reserve(Visual.mesh().positions.capacity());
+  WatchedIn.assign(Visual.mesh().vertexCount(), -1);
+  WatchedOfHexahedron.resize(Simulation.hexahedronCount());
   for (int v = 0; v < static_cast<int>(Visual.mesh().vertexCount()); ++v)
   {
     moveToBranchCopy(v);
     VisualOfHexahedron[Branches.originalOf(VisualEmbedding.hexahedron(v))].push_back(v);
+    noteRevisits(v);
   }
 }
 
@@ -281,6 +287,47 @@ bool TissueCutter::moveToBranchCopy(int v)
   return true;
 }
 
+void TissueCutter::noteRevisits(int v)
+{
+  const int h = VisualEmbedding.hexahedron(v);
+  const int original = Branches.originalOf(h);
+  if (Visual.bindings()[v].kind != BindingKind::CollisionTriangle && WatchedIn[v] != original)
+  {
+    WatchedIn[v] = original;
+    WatchedOfHexahedron[original].push_back(v);
+  }
+  const int triangle = Visual.collisionTriangleOf(v, Collision);
+  const auto& held = Branches.trianglesOf(h);
+  if (triangle < 0 || VisualIndirect[v] || std::binary_search(held.begin(), held.end(), triangle))
+    return;
+  VisualIndirect[v] = 1;
+  IndirectVisual.push_back(v);
+}
+
+void TissueCutter::takeRevisits(const TissueCutReport& report, std::vector<int>& vertices)
+{
+  vertices.insert(vertices.end(), IndirectVisual.begin(), IndirectVisual.end());
+  for (int v : IndirectVisual)
+    VisualIndirect[v] = 0;
+  IndirectVisual.clear();
+  std::vector<int> touched;
+  for (int h : report.simulation.touchedHexahedra)
+    touched.push_back(Branches.originalOf(h));
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  for (int original : touched)
+  {
+    for (int v : WatchedOfHexahedron[original])
+    {
+      if (WatchedIn[v] != original)
+        continue; // listed again elsewhere since
+      WatchedIn[v] = -1;
+      vertices.push_back(v);
+    }
+    WatchedOfHexahedron[original].clear();
+  }
+}
+
 std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
 {
   VisualEmbedding.updateHexahedra(Simulation, report.simulation.renodedHexahedra);
@@ -305,8 +352,8 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
       VisualOfHexahedron[Branches.originalOf(VisualEmbedding.hexahedron(v))].push_back(v);
   }
   // The vertices rebound by the cut, and those of hexahedra that got a new
-  // copy (a touched hexahedron that was not split keeps its triangles, and
-  // its vertices not rebound keep their place).
+  // copy (a touched hexahedron that was not split keeps one branch, and its
+  // vertices bound to a triangle of it and not rebound keep their place).
   std::vector<int> vertices = report.visual.reboundVertices;
   std::vector<int> split;
   for (const auto& [copy, source] : report.simulation.newHexahedra)
@@ -318,8 +365,14 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
     const auto& inside = VisualOfHexahedron[original];
     vertices.insert(vertices.end(), inside.begin(), inside.end());
   }
+  // And those whose collision triangle the cut may have changed without
+  // copying their hexahedron (takeRevisits).
+  takeRevisits(report, vertices);
   // Each once (marked, not sorted: the list is as long as the regions cut).
   VisualSeen.resize(rest.size(), 0);
+  VisualIndirect.resize(rest.size(), 0);
+  WatchedIn.resize(rest.size(), -1);
+  WatchedOfHexahedron.resize(VisualOfHexahedron.size());
   std::vector<int> moved;
   for (int v : vertices)
   {
@@ -330,7 +383,10 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
       moved.push_back(v);
   }
   for (int v : vertices)
+  {
     VisualSeen[v] = 0;
+    noteRevisits(v);
+  }
   return moved;
 }
 

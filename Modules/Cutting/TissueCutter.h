@@ -161,6 +161,8 @@ private:
   std::vector<int> reembedCollision(const TissueCutReport& report);
   std::vector<int> reembedVisual(const TissueCutReport& report);
   bool moveToBranchCopy(int visualVertex);
+  void noteRevisits(int visualVertex);
+  void takeRevisits(const TissueCutReport& report, std::vector<int>& vertices);
   void handleFreePieces(TissueCutReport& report);
   bool cutMaySeparate(const TissueCutReport& report);
   bool activeMeshIsOnePiece() const;
@@ -182,6 +184,23 @@ private:
   std::vector<std::vector<int>> VisualOfHexahedron;
   /// Per visual vertex, 0 between cuts: marks while a cut re-embeds.
   std::vector<char> VisualSeen;
+  /// Visual vertices a cut may move to another piece without copying
+  /// their hexahedron, revisited by the cuts that may have done so:
+  /// - those embedded in a hexahedron that does not hold their collision
+  ///   triangle (through a triangle around it, or extrapolated: rim and
+  ///   path vertices beyond the triangles' radius boxes), each once
+  ///   (flagged per vertex), revisited by every cut: the triangle they hang
+  ///   on goes to another piece when the collision mesh opens at a corner
+  ///   it shares with theirs;
+  /// - those bound to a collision edge or vertex, listed per original
+  ///   hexahedron (WatchedIn: per vertex the one whose list holds it, or
+  ///   -1), revisited by the cuts that touch it: their triangle is the
+  ///   edge's or vertex's first, which a split of a triangle beside them
+  ///   changes.
+  std::vector<int> IndirectVisual;
+  std::vector<char> VisualIndirect;
+  std::vector<std::vector<int>> WatchedOfHexahedron;
+  std::vector<int> WatchedIn;
   /// Per collision triangle: 1 while it is part of the tissue.
   std::vector<char> Active;
   /// Whether the active collision mesh was one piece after the last cut

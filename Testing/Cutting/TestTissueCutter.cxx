@@ -22,6 +22,7 @@
 #include <memory>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <random>
 
@@ -609,4 +610,134 @@ TEST(TissueCutterSeparation, FragmentsBelowTheSizeAreRemovedWholeAndAttachedPiec
   EXPECT_GE(report.removedPieces, 1);
   EXPECT_LT(keeping.activeTriangleCount(), keeping.collision().triangleCount());
   EXPECT_GT(keeping.activeTriangleCount(), keeping.collision().triangleCount() / 2);
+}
+
+// Regressions found by longer soaks (THINTISSUE_CUT_SOAK=3), each the
+// shortest run of the soak's blades that still failed without its fix.
+namespace
+{
+
+/// A blade given by its four corners (Blade::sweptSegment's order).
+Blade quad(const std::array<Vector3, 4>& corners)
+{
+  return Blade::sweptSegment(corners[0], corners[1], corners[3], corners[2]);
+}
+
+/// Cuts `model` (bound visual mesh, `rows` cut-surface rows) with each
+/// blade in turn, a solver step after each, and checks every invariant.
+void cutInTurn(const TissueModel& model,
+  const VisualCollisionBinding& binding,
+  int rows,
+  const std::vector<Blade>& blades)
+{
+  CorotationalHexFem fem(model.simulation, softTissue(), smallSteps());
+  TissueCutterSettings settings;
+  settings.visual.cutSurfaceRows = rows;
+  TissueCutter cutter(binding, model.simulation, &fem, settings);
+  for (std::size_t b = 0; b < blades.size(); ++b)
+  {
+    const auto report = cutter.cut(blades[b]);
+    ASSERT_TRUE(report.changed()) << "blade " << b;
+    ASSERT_EQ(report.visualError, "") << "blade " << b;
+    ASSERT_TRUE(cutterIsConsistent(cutter, model.simulation)) << "blade " << b;
+    ASSERT_TRUE(fem.step().ok) << "blade " << b;
+  }
+}
+
+} // namespace
+
+// A split triangle's pieces are tested against the hexahedra of their
+// parent, each grown by the largest radius of its own corners (often less
+// than the parent's), so a hexahedron can lose the parent without holding
+// any piece of it. Such a hexahedron had been left out of the branch
+// analysis, and where the lost parent had joined its other triangles into
+// one branch, two pieces of the torn meniscus (third blade) kept sharing
+// its nodes.
+TEST(TissueCutterRegression, AHexahedronThatLosesASplitTriangleIsAnalysedAgain)
+{
+  MeniscusParameters parameters;
+  parameters.tear = defaultMeniscusTear(MeniscusTearType::Radial);
+  const MeniscusModel meniscus = makeMeniscus(parameters);
+  const VisualCollisionBinding binding = bindVisualToCollision(meniscus.visual, meniscus.collision);
+  const std::vector<Blade> blades = {
+    quad({ Vector3(-23.928363607988011, 4.8695372601716809, -44.163514477299941),
+      Vector3(-43.115232325486595, 31.089413895821089, 53.228288410185556),
+      Vector3(-37.941445984833294, 9.5596924716645919, 52.436939177426297),
+      Vector3(-18.75457726733471, -16.660184163984816, -44.9548637100592) }),
+    quad({ Vector3(-28.215281016746463, 22.472703129838468, -43.475472287255158),
+      Vector3(-32.601679288852161, 4.6165919079463613, 53.916330600230339),
+      Vector3(-35.479957236575046, -10.70540741007348, 53.788700876767329),
+      Vector3(-31.093558964469349, 7.1507038118186266, -43.603102010718167) }),
+    quad({ Vector3(-36.971747743716747, 15.008250115106238, -44.67921266824041),
+      Vector3(-32.1881559461157, -12.726632966939201, 52.712590219245087),
+      Vector3(-10.446934630786597, -32.15030594831979, 52.845438070373348),
+      Vector3(-15.230526428387652, -4.4154228662743531, -44.546364817112149) }),
+  };
+  cutInTurn(meniscus, binding, 2, blades);
+}
+
+// A visual vertex bound to a collision edge hangs on the edge's first
+// triangle. When a cut splits that triangle the edge may go to a piece its
+// hexahedron does not hold; the hexahedron is touched but not copied, and
+// the vertex (a cut-surface vertex on the steak's second cut, which
+// separates that piece) had stayed on the other piece's nodes.
+TEST(TissueCutterRegression, AVisualVertexOnAnEdgeOfASplitTriangleFollowsItsPiece)
+{
+  const auto bundle = preparedSteak();
+  if (!bundle)
+    GTEST_SKIP() << "../shared/data/steak not present";
+  TissueModel steak;
+  steak.simulation = bundle->simulation;
+  const std::vector<Blade> blades = {
+    quad({ Vector3(2.26270343908317, -2.4188549867780798, -9.5373007892664283),
+      Vector3(2.26270343908317, -2.4188549867780798, 9.5422577892664293),
+      Vector3(-3.2622234505314021, -0.92291285418609548, 9.5422577892664293),
+      Vector3(-3.2622234505314021, -0.92291285418609548, -9.5373007892664283) }),
+    quad({ Vector3(-2.9975047430694688, -3.8828950247726817, -9.5373012096473389),
+      Vector3(-2.9975047430694688, -3.8828950247726817, 9.5422573688855188),
+      Vector3(-2.9825903213873048, 1.8409531178387106, 9.5422573688855188),
+      Vector3(-2.9825903213873048, 1.8409531178387106, -9.5373012096473389) }),
+  };
+  cutInTurn(steak, bundle->binding, 1, blades);
+}
+
+// A visual vertex beyond the radius boxes of its collision triangle's
+// hexahedra hangs on a hexahedron holding a triangle around its own. When
+// the collision mesh opens at the corner the two triangles share, they go
+// to different pieces and nothing of that hexahedron is copied; the vertex
+// (on the steak, after a bite and a cut through it) had stayed on the other
+// piece's nodes.
+TEST(TissueCutterRegression, AVisualVertexHangingOnANeighbouringTriangleFollowsItsPiece)
+{
+  const auto bundle = preparedSteak();
+  if (!bundle)
+    GTEST_SKIP() << "../shared/data/steak not present";
+  TissueModel steak;
+  steak.simulation = bundle->simulation;
+  const std::vector<Vector2> bite = { Vector2(-2.1954497422256685, 0.26968498292957355),
+    Vector2(-2.3905011642540637, 0.85115822362987381),
+    Vector2(-3.0347590724136202, 1.3860994812339502),
+    Vector2(-3.5972386707004436, 1.4744227028535586),
+    Vector2(-4.2409667071105446, 1.26200978076599),
+    Vector2(-4.7255931872751349, 0.69796897137595726),
+    Vector2(-4.822166519206629, -0.090456709060841162),
+    Vector2(-4.6356404706517935, -0.56419868301212583),
+    Vector2(-3.9690034881590615, -1.0978982849114827),
+    Vector2(-3.3797450025157376, -1.170103568692656),
+    Vector2(-2.7381142109599561, -0.92455904954688584),
+    Vector2(-2.3343576536350401, -0.45205323079854121) };
+  std::vector<Vector3> low, high;
+  for (const Vector2& p : bite)
+  {
+    low.emplace_back(p.x(), p.y(), -9.5372997261180696);
+    high.emplace_back(p.x(), p.y(), 9.542258852414788);
+  }
+  const std::vector<Blade> blades = {
+    Blade::sweptOutline(low, high),
+    quad({ Vector3(-2.9975047430694688, -3.8828950247726817, -9.5373012096473389),
+      Vector3(-2.9975047430694688, -3.8828950247726817, 9.5422573688855188),
+      Vector3(-2.9825903213873048, 1.8409531178387106, 9.5422573688855188),
+      Vector3(-2.9825903213873048, 1.8409531178387106, -9.5373012096473389) }),
+  };
+  cutInTurn(steak, bundle->binding, 1, blades);
 }
