@@ -254,6 +254,11 @@ bool TissueCutter::moveToBranchCopy(int v)
         Collision.trianglesOfVertex(corner).begin(),
         Collision.trianglesOfVertex(corner).end());
     holder = Branches.copyHolding(h, around);
+    if (holder >= 0 && !VisualIndirect[v])
+    {
+      VisualIndirect[v] = 1;
+      IndirectVisual.push_back(v);
+    }
   }
   if (holder < 0)
   {
@@ -289,19 +294,14 @@ bool TissueCutter::moveToBranchCopy(int v)
 
 void TissueCutter::noteRevisits(int v)
 {
-  const int h = VisualEmbedding.hexahedron(v);
-  const int original = Branches.originalOf(h);
-  if (Visual.bindings()[v].kind != BindingKind::CollisionTriangle && WatchedIn[v] != original)
+  if (Visual.bindings()[v].kind == BindingKind::CollisionTriangle)
+    return;
+  const int original = Branches.originalOf(VisualEmbedding.hexahedron(v));
+  if (WatchedIn[v] != original)
   {
     WatchedIn[v] = original;
     WatchedOfHexahedron[original].push_back(v);
   }
-  const int triangle = Visual.collisionTriangleOf(v, Collision);
-  const auto& held = Branches.trianglesOf(h);
-  if (triangle < 0 || VisualIndirect[v] || std::binary_search(held.begin(), held.end(), triangle))
-    return;
-  VisualIndirect[v] = 1;
-  IndirectVisual.push_back(v);
 }
 
 void TissueCutter::takeRevisits(const TissueCutReport& report, std::vector<int>& vertices)

@@ -186,12 +186,11 @@ private:
   std::vector<char> VisualSeen;
   /// Visual vertices a cut may move to another piece without copying
   /// their hexahedron, revisited by the cuts that may have done so:
-  /// - those embedded in a hexahedron that does not hold their collision
-  ///   triangle (through a triangle around it, or extrapolated: rim and
-  ///   path vertices beyond the triangles' radius boxes), each once
-  ///   (flagged per vertex), revisited by every cut: the triangle they hang
-  ///   on goes to another piece when the collision mesh opens at a corner
-  ///   it shares with theirs;
+  /// - those embedded in a hexahedron that holds a triangle around their
+  ///   collision triangle but not that triangle (moveToBranchCopy), each
+  ///   once (flagged per vertex), revisited by every cut: the triangle they
+  ///   hang on goes to another piece when the collision mesh opens at a
+  ///   corner it shares with theirs;
   /// - those bound to a collision edge or vertex, listed per original
   ///   hexahedron (WatchedIn: per vertex the one whose list holds it, or
   ///   -1), revisited by the cuts that touch it: their triangle is the
