@@ -49,22 +49,48 @@ std::string describePoint(const SurfacePoint& point)
   return text.str();
 }
 
-/// A mesh edge that path points lie inside.
+/// A mesh edge that path points lie inside. Its lists are ranges of
+/// arrays shared by all edges (EdgeLists): one allocation each, not four
+/// per edge.
 struct PathEdge
 {
   int start = 0; ///< smaller vertex index
   int end = 0;
   int firstPath = 0; ///< the first path point on it, for messages
   int firstPoint = 0;
-  /// The path points on the edge, in the order met, and the vertex each
-  /// became (an inserted vertex or an end of the edge).
-  std::vector<double> pointParameters;
-  std::vector<int> pointVertices;
-  /// The vertices along the edge from start to end: start, the inserted
-  /// vertices by increasing parameter, end.
-  std::vector<int> chain;
-  /// The triangles beside the edge, by increasing index.
+  /// The vertices along the edge from start to end (start, the inserted
+  /// vertices by increasing parameter, end), and the triangles beside it
+  /// by increasing index: [begin, end) in EdgeLists::chains, ::triangles.
+  int chainBegin = 0;
+  int chainEnd = 0;
+  int trianglesBegin = 0;
+  int trianglesEnd = 0;
+  int chainSize() const { return chainEnd - chainBegin; }
+  int triangleCount() const { return trianglesEnd - trianglesBegin; }
+};
+
+/// The path points inside edges (per point: its edge, its parameter, the
+/// vertex it became: an inserted vertex or an end of the edge), and the
+/// edges' chains and triangles.
+struct EdgeLists
+{
+  std::vector<int> pointEdge;
+  std::vector<double> pointParameter;
+  std::vector<int> pointVertex;
+  std::vector<int> chains;
   std::vector<int> triangles;
+};
+
+/// A run of ints in one of those arrays (empty: no such edge).
+struct IntRange
+{
+  const int* first = nullptr;
+  const int* last = nullptr;
+  const int* begin() const { return first; }
+  const int* end() const { return last; }
+  std::size_t size() const { return static_cast<std::size_t>(last - first); }
+  int front() const { return *first; }
+  int operator[](std::ptrdiff_t i) const { return first[i]; }
 };
 
 /// A vertex inserted inside an edge.
@@ -175,46 +201,182 @@ void triangulateFace(Face& face,
   pieces.push_back({ face.points[0], face.points[1], face.points[2] });
 }
 
-} // namespace
-
-RemeshedSurface insertPaths(const TriangleMesh& mesh,
-  const std::vector<SurfacePath>& paths,
-  double mergeTolerance)
+/// The work of insertPaths, step by step (see there): the state the steps
+/// share, and one function per step.
+class PathInsertion
 {
-  const std::string label = "path re-meshing on " + meshLabel(mesh);
-  if (!(mergeTolerance >= 0.0 && mergeTolerance < 0.5))
+public:
+  PathInsertion(const TriangleMesh& input,
+    const std::vector<SurfacePath>& inputPaths,
+    double tolerance,
+    std::string name)
+    : mesh(input)
+    , paths(inputPaths)
+    , mergeTolerance(tolerance)
+    , label(std::move(name))
+    , vertexCount(static_cast<int>(input.positions.size()))
+    , triangleCount(static_cast<int>(input.triangles.size()))
+    , hasTexture(input.hasTextureCoordinates())
+    , inputTextureCount(static_cast<int>(input.textureCoordinates.size()))
   {
-    std::ostringstream message;
-    message << label << ": merge tolerance must be at least 0 and below 0.5, got "
-            << mergeTolerance;
-    throw InvalidInputError(message.str());
   }
-  mesh.checkConsistency();
-  const int vertexCount = static_cast<int>(mesh.positions.size());
-  const int triangleCount = static_cast<int>(mesh.triangles.size());
-  const bool hasTexture = mesh.hasTextureCoordinates();
 
-  // 1. Path points: check them, gather the points inside each edge, and
-  // note the vertices whose triangles are needed.
-  std::vector<std::vector<PointLocation>> locations(paths.size());
-  std::vector<PathEdge> edges;
-  std::unordered_map<std::uint64_t, int> edgeIndex;
-  std::vector<int> localIndex(vertexCount, -1);
-  std::vector<int> touched;
-  std::size_t pointCount = 0;
-  for (const SurfacePath& path : paths)
+  RemeshedSurface run()
   {
-    pointCount += path.points.size();
+    locatePoints();
+    gatherStars();
+    placeEdgePoints();
+    copyMesh();
+    tracePaths();
+    findAffected();
+    retriangulate();
+    return std::move(result);
   }
-  edgeIndex.reserve(pointCount);
-  auto touch = [&](int v)
+
+private:
+  void locatePoints();
+  void gatherStars();
+  void placeEdgePoints();
+  void copyMesh();
+  void tracePaths();
+  void findAffected();
+  void retriangulate();
+  void collectBorder(int t);
+  void collectCuts(int t, std::vector<Chord>::const_iterator& chord);
+  int cutIntoFaces();
+  void emitPieces(int t, int nextLine);
+  int textureOf(int x, int t, int corner, int otherCorner);
+
+  void touch(int v)
   {
     if (localIndex[v] < 0)
     {
       localIndex[v] = static_cast<int>(touched.size());
       touched.push_back(v);
     }
-  };
+  }
+  std::vector<int>::const_iterator starBegin(int v) const
+  {
+    return starTriangles.begin() + starOffsets[localIndex[v]];
+  }
+  std::vector<int>::const_iterator starEnd(int v) const
+  {
+    return starTriangles.begin() + starOffsets[localIndex[v] + 1];
+  }
+  bool hasCorner(int t, int v) const
+  {
+    const Triangle& tri = mesh.triangles[t];
+    return tri[0] == v || tri[1] == v || tri[2] == v;
+  }
+  int vertexOf(const PointLocation& location) const
+  {
+    return location.vertex >= 0 ? location.vertex : lists.pointVertex[location.index];
+  }
+  /// Whether vertex x lies on the side of `tri` joining corners k and k + 1.
+  bool onSide(int x, const Triangle& tri, int k) const
+  {
+    const int a = tri[k];
+    const int b = tri[(k + 1) % 3];
+    if (x == a || x == b)
+    {
+      return true;
+    }
+    if (x < vertexCount)
+    {
+      return false;
+    }
+    const PathEdge& edge = edges[inserted[x - vertexCount].edge];
+    return (edge.start == a && edge.end == b) || (edge.start == b && edge.end == a);
+  }
+  IntRange chainOf(int a, int b) const
+  {
+    const auto found = edgeIndex.find(edgeKey(a, b));
+    if (found == edgeIndex.end())
+    {
+      return IntRange{};
+    }
+    const PathEdge& edge = edges[found->second];
+    return IntRange{ lists.chains.data() + edge.chainBegin, lists.chains.data() + edge.chainEnd };
+  }
+  Face& newFace()
+  {
+    if (faceCount == faces.size())
+    {
+      faces.emplace_back();
+    }
+    Face& face = faces[faceCount++];
+    face.points.clear();
+    face.lines.clear();
+    return face;
+  }
+  int positionOf(int vertex) const
+  {
+    for (std::size_t i = 0; i < border.size(); ++i)
+    {
+      if (border[i].vertex == vertex)
+      {
+        return static_cast<int>(i);
+      }
+    }
+    throw Error(label + ": chord end not on its triangle (internal error)");
+  }
+
+  const TriangleMesh& mesh;
+  const std::vector<SurfacePath>& paths;
+  const double mergeTolerance;
+  const std::string label;
+  const int vertexCount;
+  const int triangleCount;
+  const bool hasTexture;
+  const int inputTextureCount;
+  /// Steps 1 and 2: where each path point lies, the edges holding points,
+  /// the vertices touched (local index per vertex) and their triangles.
+  std::vector<std::vector<PointLocation>> locations;
+  std::vector<PathEdge> edges;
+  EdgeLists lists;
+  std::unordered_map<std::uint64_t, int> edgeIndex;
+  std::vector<int> localIndex;
+  std::vector<int> touched;
+  std::vector<int> starOffsets;
+  std::vector<int> starTriangles;
+  /// Steps 3 to 7: the inserted vertices, the output, the chords, the
+  /// affected triangles.
+  std::vector<InsertedVertex> inserted;
+  RemeshedSurface result;
+  TriangleMesh& out = result.mesh;
+  std::vector<Chord> chords;
+  std::vector<int> affected;
+  std::size_t addedTriangles = 0;
+  std::vector<int> nextTexture; ///< per texture coordinate made here
+  /// Scratch buffers of step 7, reused from triangle to triangle.
+  std::vector<BorderPoint> border;
+  std::vector<std::array<int, 3>> cuts; ///< border positions (first < second), path
+  std::vector<Face> faces;              ///< the first `faceCount` are in use
+  std::size_t faceCount = 0;
+  Face split;
+  std::vector<std::array<int, 3>> pieces;
+};
+
+/// A triangle repeating a vertex is listed once in that vertex's star.
+bool firstOccurrence(const Triangle& tri, int c)
+{
+  return (c == 0 || tri[c] != tri[0]) && (c < 2 || tri[2] != tri[1]);
+}
+
+void PathInsertion::locatePoints()
+{
+  // 1. Path points: check them, gather the points inside each edge, and
+  // note the vertices whose triangles are needed.
+  locations.resize(paths.size());
+  localIndex.assign(vertexCount, -1);
+  std::size_t pointCount = 0;
+  for (const SurfacePath& path : paths)
+  {
+    pointCount += path.points.size();
+  }
+  edgeIndex.reserve(pointCount);
+  lists.pointEdge.reserve(pointCount);
+  lists.pointParameter.reserve(pointCount);
   for (std::size_t p = 0; p < paths.size(); ++p)
   {
     const auto& points = paths[p].points;
@@ -261,21 +423,22 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
         edge.firstPoint = static_cast<int>(k);
         edges.push_back(std::move(edge));
       }
-      PathEdge& edge = edges[found->second];
       location.edge = found->second;
-      location.index = static_cast<int>(edge.pointParameters.size());
-      edge.pointParameters.push_back(point.edgeParameter);
+      location.index = static_cast<int>(lists.pointParameter.size());
+      lists.pointEdge.push_back(found->second);
+      lists.pointParameter.push_back(point.edgeParameter);
       touch(point.edgeStart);
       touch(point.edgeEnd);
     }
   }
+}
 
+void PathInsertion::gatherStars()
+{
   // 2. The triangles around the touched vertices (one pass over the
   // triangles; each list by increasing triangle index).
   // A triangle repeating a vertex is listed once in that vertex's list.
-  auto firstOccurrence = [](const Triangle& tri, int c)
-  { return (c == 0 || tri[c] != tri[0]) && (c < 2 || tri[2] != tri[1]); };
-  std::vector<int> starOffsets(touched.size() + 1, 0);
+  starOffsets.assign(touched.size() + 1, 0);
   for (const Triangle& tri : mesh.triangles)
   {
     for (int c = 0; c < 3; ++c)
@@ -287,7 +450,7 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
     }
   }
   std::partial_sum(starOffsets.begin(), starOffsets.end(), starOffsets.begin());
-  std::vector<int> starTriangles(starOffsets.back());
+  starTriangles.assign(starOffsets.back(), 0);
   {
     std::vector<int> cursor(starOffsets.begin(), starOffsets.end() - 1);
     for (int t = 0; t < triangleCount; ++t)
@@ -303,55 +466,77 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
       }
     }
   }
-  auto starBegin = [&](int v) { return starTriangles.begin() + starOffsets[localIndex[v]]; };
-  auto starEnd = [&](int v) { return starTriangles.begin() + starOffsets[localIndex[v] + 1]; };
-  auto hasCorner = [&](int t, int v)
-  {
-    const Triangle& tri = mesh.triangles[t];
-    return tri[0] == v || tri[1] == v || tri[2] == v;
-  };
+}
 
+void PathInsertion::placeEdgePoints()
+{
   // 3. The triangles beside each edge, and the vertices its points become:
   // points within the tolerance of an end are that end; the others, sorted
   // along the edge, form clusters no wider than the tolerance, each one
   // inserted vertex at its first (smallest) parameter.
-  std::vector<InsertedVertex> inserted;
+  // Each edge's points (global point indices, in the order met), grouped
+  // by edge.
+  std::vector<int> edgePointOffsets(edges.size() + 1, 0);
+  for (int e : lists.pointEdge)
+  {
+    ++edgePointOffsets[e + 1];
+  }
+  std::partial_sum(edgePointOffsets.begin(), edgePointOffsets.end(), edgePointOffsets.begin());
+  std::vector<int> edgePoints(lists.pointEdge.size());
+  {
+    std::vector<int> cursor(edgePointOffsets.begin(), edgePointOffsets.end() - 1);
+    for (std::size_t i = 0; i < lists.pointEdge.size(); ++i)
+    {
+      edgePoints[cursor[lists.pointEdge[i]]++] = static_cast<int>(i);
+    }
+  }
+  lists.pointVertex.assign(lists.pointEdge.size(), -1);
+  lists.chains.reserve(2 * edges.size() + lists.pointEdge.size());
+  lists.triangles.reserve(2 * edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e)
   {
     PathEdge& edge = edges[e];
+    edge.trianglesBegin = static_cast<int>(lists.triangles.size());
     for (auto t = starBegin(edge.start); t != starEnd(edge.start); ++t)
     {
       if (hasCorner(*t, edge.end))
       {
-        edge.triangles.push_back(*t);
+        lists.triangles.push_back(*t);
       }
     }
-    if (edge.triangles.empty())
+    edge.trianglesEnd = static_cast<int>(lists.triangles.size());
+    if (edge.triangleCount() == 0)
     {
       throw InvalidInputError(label + ": path " + std::to_string(edge.firstPath) + ", point " +
                               std::to_string(edge.firstPoint) + " lies on (" +
                               std::to_string(edge.start) + ", " + std::to_string(edge.end) +
                               "), which is not an edge of the mesh");
     }
-    const std::size_t count = edge.pointParameters.size();
-    std::vector<int> order(count);
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(),
-      order.end(),
-      [&](int a, int b) { return edge.pointParameters[a] < edge.pointParameters[b]; });
-    edge.pointVertices.assign(count, -1);
-    edge.chain.push_back(edge.start);
+    // The edge's points by increasing parameter (ties: in the order met,
+    // which is increasing point index).
+    const auto order = edgePoints.begin() + edgePointOffsets[e];
+    const auto orderEnd = edgePoints.begin() + edgePointOffsets[e + 1];
+    std::sort(order,
+      orderEnd,
+      [&](int a, int b)
+      {
+        return lists.pointParameter[a] < lists.pointParameter[b] ||
+               (lists.pointParameter[a] == lists.pointParameter[b] && a < b);
+      });
+    edge.chainBegin = static_cast<int>(lists.chains.size());
+    lists.chains.push_back(edge.start);
     double clusterParameter = -1.0;
-    for (int i : order)
+    for (auto i = order; i != orderEnd; ++i)
     {
-      const double t = edge.pointParameters[i];
+      const double t = lists.pointParameter[*i];
+      int& pointVertex = lists.pointVertex[*i];
       if (t <= mergeTolerance)
       {
-        edge.pointVertices[i] = edge.start;
+        pointVertex = edge.start;
       }
       else if (t >= 1.0 - mergeTolerance)
       {
-        edge.pointVertices[i] = edge.end;
+        pointVertex = edge.end;
       }
       else
       {
@@ -361,18 +546,20 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
           InsertedVertex vertex;
           vertex.edge = static_cast<int>(e);
           vertex.parameter = t;
-          edge.chain.push_back(vertexCount + static_cast<int>(inserted.size()));
+          lists.chains.push_back(vertexCount + static_cast<int>(inserted.size()));
           inserted.push_back(std::move(vertex));
         }
-        edge.pointVertices[i] = edge.chain.back();
+        pointVertex = lists.chains.back();
       }
     }
-    edge.chain.push_back(edge.end);
+    lists.chains.push_back(edge.end);
+    edge.chainEnd = static_cast<int>(lists.chains.size());
   }
+}
 
+void PathInsertion::copyMesh()
+{
   // 4. The output mesh: a copy of the input plus the inserted vertices.
-  RemeshedSurface result;
-  TriangleMesh& out = result.mesh;
   out = mesh;
   const std::size_t outputVertexCount = vertexCount + inserted.size();
   out.positions.reserve(outputVertexCount);
@@ -399,7 +586,7 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
       else
       {
         // Opposite end normals: the first triangle's normal instead.
-        normal = mesh.triangleNormal(edge.triangles.front());
+        normal = mesh.triangleNormal(lists.triangles[edge.trianglesBegin]);
         if (normal.squaredNorm() == 0.0)
         {
           normal = mesh.normals[edge.start];
@@ -433,37 +620,12 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
     const PathEdge& edge = edges[vertex.edge];
     result.insertedOn.push_back(SurfacePoint::onEdge(edge.start, edge.end, vertex.parameter));
   }
+}
 
+void PathInsertion::tracePaths()
+{
   // 5. The path segments: along an edge (then the path visits every vertex
   // inserted on it in between) or a chord across a triangle.
-  auto vertexOf = [&](const PointLocation& location)
-  {
-    return location.vertex >= 0 ? location.vertex
-                                : edges[location.edge].pointVertices[location.index];
-  };
-  // Whether vertex x lies on the side of `tri` joining corners k and k + 1.
-  auto onSide = [&](int x, const Triangle& tri, int k)
-  {
-    const int a = tri[k];
-    const int b = tri[(k + 1) % 3];
-    if (x == a || x == b)
-    {
-      return true;
-    }
-    if (x < vertexCount)
-    {
-      return false;
-    }
-    const PathEdge& edge = edges[inserted[x - vertexCount].edge];
-    return (edge.start == a && edge.end == b) || (edge.start == b && edge.end == a);
-  };
-  const std::vector<int>* noChain = nullptr;
-  auto chainOf = [&](int a, int b)
-  {
-    const auto found = edgeIndex.find(edgeKey(a, b));
-    return found == edgeIndex.end() ? noChain : &edges[found->second].chain;
-  };
-  std::vector<Chord> chords;
   result.pathVertices.resize(paths.size());
   for (std::size_t p = 0; p < paths.size(); ++p)
   {
@@ -553,34 +715,37 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
       }
       const int a = tri[side];
       const int b = tri[(side + 1) % 3];
-      const std::vector<int>* chain = chainOf(a, b);
-      if (chain == nullptr)
+      const IntRange chain = chainOf(a, b);
+      if (chain.first == nullptr)
       {
         append(to);
         continue;
       }
-      const auto fromAt = std::find(chain->begin(), chain->end(), from) - chain->begin();
-      const auto toAt = std::find(chain->begin(), chain->end(), to) - chain->begin();
+      const auto fromAt = std::find(chain.begin(), chain.end(), from) - chain.begin();
+      const auto toAt = std::find(chain.begin(), chain.end(), to) - chain.begin();
       const auto step = toAt > fromAt ? 1 : -1;
       for (auto i = fromAt + step; i != toAt; i += step)
       {
-        append((*chain)[i]);
+        append(chain[i]);
       }
       append(to);
     }
   }
+}
 
+void PathInsertion::findAffected()
+{
   // 6. The affected triangles (those beside an edge with inserted vertices;
   // every chord ends at such a vertex), by increasing index. A triangle with
   // n inserted vertices on its sides becomes n + 1 triangles.
-  std::vector<int> affected;
-  std::size_t addedTriangles = 0;
   for (const PathEdge& edge : edges)
   {
-    if (edge.chain.size() > 2)
+    if (edge.chainSize() > 2)
     {
-      affected.insert(affected.end(), edge.triangles.begin(), edge.triangles.end());
-      addedTriangles += (edge.chain.size() - 2) * edge.triangles.size();
+      affected.insert(affected.end(),
+        lists.triangles.begin() + edge.trianglesBegin,
+        lists.triangles.begin() + edge.trianglesEnd);
+      addedTriangles += static_cast<std::size_t>((edge.chainSize() - 2) * edge.triangleCount());
     }
   }
   std::sort(affected.begin(), affected.end());
@@ -588,7 +753,40 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
   std::stable_sort(chords.begin(),
     chords.end(),
     [](const Chord& a, const Chord& b) { return a.triangle < b.triangle; });
+}
 
+// Vertex x inserted on the side joining corners `corner` and `otherCorner`
+// of triangle t: interpolated from t's own corners, and shared with the
+// other triangles where the value is the same.
+int PathInsertion::textureOf(int x, int t, int corner, int otherCorner)
+{
+  InsertedVertex& vertex = inserted[x - vertexCount];
+  const PathEdge& edge = edges[vertex.edge];
+  const Triangle& texture = mesh.textureCorners[t];
+  const int startCorner = mesh.triangles[t][corner] == edge.start ? corner : otherCorner;
+  const int endCorner = startCorner == corner ? otherCorner : corner;
+  const double s = vertex.parameter;
+  const Vector2 value = (1.0 - s) * mesh.textureCoordinates[texture[startCorner]] +
+                        s * mesh.textureCoordinates[texture[endCorner]];
+  int last = -1;
+  for (int i = vertex.firstTexture; i >= 0; i = nextTexture[i - inputTextureCount])
+  {
+    const Vector2& known = out.textureCoordinates[i];
+    if (known.x() == value.x() && known.y() == value.y())
+    {
+      return i;
+    }
+    last = i;
+  }
+  const int index = static_cast<int>(out.textureCoordinates.size());
+  out.textureCoordinates.push_back(value);
+  nextTexture.push_back(-1);
+  (last < 0 ? vertex.firstTexture : nextTexture[last - inputTextureCount]) = index;
+  return index;
+}
+
+void PathInsertion::retriangulate()
+{
   // 7. Re-triangulation of each affected triangle inside its own plane.
   out.triangles.reserve(triangleCount + addedTriangles);
   if (hasTexture)
@@ -598,56 +796,7 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
   result.inputTriangle.reserve(triangleCount + addedTriangles);
   result.inputTriangle.resize(triangleCount);
   std::iota(result.inputTriangle.begin(), result.inputTriangle.end(), 0);
-  const int inputTextureCount = static_cast<int>(mesh.textureCoordinates.size());
-  std::vector<int> nextTexture; // per texture coordinate made here
-  auto textureOf = [&](int x, int t, int corner, int otherCorner)
-  {
-    // Vertex x inserted on the side joining corners `corner` and
-    // `otherCorner` of triangle t: interpolated from t's own corners, and
-    // shared with the other triangles where the value is the same.
-    InsertedVertex& vertex = inserted[x - vertexCount];
-    const PathEdge& edge = edges[vertex.edge];
-    const Triangle& texture = mesh.textureCorners[t];
-    const int startCorner = mesh.triangles[t][corner] == edge.start ? corner : otherCorner;
-    const int endCorner = startCorner == corner ? otherCorner : corner;
-    const double s = vertex.parameter;
-    const Vector2 value = (1.0 - s) * mesh.textureCoordinates[texture[startCorner]] +
-                          s * mesh.textureCoordinates[texture[endCorner]];
-    int last = -1;
-    for (int i = vertex.firstTexture; i >= 0; i = nextTexture[i - inputTextureCount])
-    {
-      const Vector2& known = out.textureCoordinates[i];
-      if (known.x() == value.x() && known.y() == value.y())
-      {
-        return i;
-      }
-      last = i;
-    }
-    const int index = static_cast<int>(out.textureCoordinates.size());
-    out.textureCoordinates.push_back(value);
-    nextTexture.push_back(-1);
-    (last < 0 ? vertex.firstTexture : nextTexture[last - inputTextureCount]) = index;
-    return index;
-  };
-  // Scratch buffers, reused from triangle to triangle.
-  std::vector<BorderPoint> border;
-  std::vector<std::array<int, 3>> cuts; // border positions (first < second), path
-  std::vector<Face> faces;              // the first `faceCount` are in use
-  std::size_t faceCount = 0;
-  auto newFace = [&]() -> Face&
-  {
-    if (faceCount == faces.size())
-    {
-      faces.emplace_back();
-    }
-    Face& face = faces[faceCount++];
-    face.points.clear();
-    face.lines.clear();
-    return face;
-  };
-  Face split;
-  std::vector<std::array<int, 3>> pieces;
-  auto chord = chords.begin();
+  auto chord = chords.cbegin();
   for (int t : affected)
   {
     const Triangle& tri = mesh.triangles[t];
@@ -656,148 +805,173 @@ RemeshedSurface insertPaths(const TriangleMesh& mesh,
       throw InvalidInputError(
         label + ": triangle " + std::to_string(t) + ", which a path crosses, repeats a vertex");
     }
-    border.clear();
-    for (int k = 0; k < 3; ++k)
-    {
-      border.push_back({ tri[k], k, hasTexture ? mesh.textureCorners[t][k] : -1 });
-      const std::vector<int>* chain = chainOf(tri[k], tri[(k + 1) % 3]);
-      if (chain == nullptr || chain->size() <= 2)
-      {
-        continue;
-      }
-      const bool forward = chain->front() == tri[k];
-      for (std::size_t i = 1; i + 1 < chain->size(); ++i)
-      {
-        const int x = (*chain)[forward ? i : chain->size() - 1 - i];
-        border.push_back({ x, k, hasTexture ? textureOf(x, t, k, (k + 1) % 3) : -1 });
-      }
-    }
-    auto positionOf = [&](int vertex)
-    {
-      for (std::size_t i = 0; i < border.size(); ++i)
-      {
-        if (border[i].vertex == vertex)
-        {
-          return static_cast<int>(i);
-        }
-      }
-      throw Error(label + ": chord end not on its triangle (internal error)");
-    };
-
-    // The chords in this triangle, once each; two cross when their ends
-    // alternate around the border (exact: no floating-point test).
-    cuts.clear();
-    for (; chord != chords.end() && chord->triangle == t; ++chord)
-    {
-      const int a = positionOf(chord->from);
-      const int b = positionOf(chord->to);
-      cuts.push_back({ std::min(a, b), std::max(a, b), chord->path });
-    }
-    std::sort(cuts.begin(), cuts.end());
-    cuts.erase(std::unique(cuts.begin(),
-                 cuts.end(),
-                 [](const std::array<int, 3>& x, const std::array<int, 3>& y)
-                 { return x[0] == y[0] && x[1] == y[1]; }),
-      cuts.end());
-    for (std::size_t i = 0; i < cuts.size(); ++i)
-    {
-      for (std::size_t j = i + 1; j < cuts.size(); ++j)
-      {
-        const auto& c = cuts[i];
-        const auto& d = cuts[j];
-        if ((c[0] < d[0] && d[0] < c[1] && c[1] < d[1]) ||
-            (d[0] < c[0] && c[0] < d[1] && d[1] < c[1]))
-        {
-          throw InvalidInputError(label + ": paths " + std::to_string(std::min(c[2], d[2])) +
-                                  " and " + std::to_string(std::max(c[2], d[2])) +
-                                  " cross inside triangle " + std::to_string(t) +
-                                  " (paths may touch, never cross)");
-        }
-      }
-    }
-
-    // Cut the triangle along the chords into convex faces.
-    faceCount = 0;
-    {
-      Face& whole = newFace();
-      for (std::size_t i = 0; i < border.size(); ++i)
-      {
-        whole.points.push_back(static_cast<int>(i));
-        whole.lines.push_back(border[i].side);
-      }
-    }
-    int nextLine = 3;
-    for (const auto& cut : cuts)
-    {
-      const int line = nextLine++;
-      for (std::size_t f = 0; f < faceCount; ++f)
-      {
-        Face& face = faces[f];
-        const auto first = std::find(face.points.begin(), face.points.end(), cut[0]);
-        const auto second = std::find(face.points.begin(), face.points.end(), cut[1]);
-        if (first == face.points.end() || second == face.points.end())
-        {
-          continue;
-        }
-        // Points lo..hi stay (closed by the chord from hi to lo); the rest,
-        // hi..lo around the end, form the new face (closed from lo to hi).
-        const auto lo = std::min(first, second) - face.points.begin();
-        const auto hi = std::max(first, second) - face.points.begin();
-        split.points.assign(face.points.begin() + hi, face.points.end());
-        split.points.insert(split.points.end(), face.points.begin(), face.points.begin() + lo + 1);
-        split.lines.assign(face.lines.begin() + hi, face.lines.end());
-        split.lines.insert(split.lines.end(), face.lines.begin(), face.lines.begin() + lo);
-        split.lines.push_back(line);
-        face.points.erase(face.points.begin() + hi + 1, face.points.end());
-        face.points.erase(face.points.begin(), face.points.begin() + lo);
-        face.lines.erase(face.lines.begin() + hi, face.lines.end());
-        face.lines.erase(face.lines.begin(), face.lines.begin() + lo);
-        face.lines.push_back(line);
-        Face& added = newFace(); // may move the faces: `face` is not used again
-        std::swap(added.points, split.points);
-        std::swap(added.lines, split.lines);
-        break;
-      }
-    }
-
-    pieces.clear();
-    for (std::size_t f = 0; f < faceCount; ++f)
-    {
-      triangulateFace(faces[f], nextLine, border, out.positions, pieces);
-    }
-    for (std::size_t i = 0; i < pieces.size(); ++i)
-    {
-      const auto& piece = pieces[i];
-      const Triangle vertices{
-        border[piece[0]].vertex, border[piece[1]].vertex, border[piece[2]].vertex
-      };
-      const Triangle textures{
-        border[piece[0]].texture, border[piece[1]].texture, border[piece[2]].texture
-      };
-      if (i == 0)
-      {
-        out.triangles[t] = vertices;
-        if (hasTexture)
-        {
-          out.textureCorners[t] = textures;
-        }
-      }
-      else
-      {
-        out.triangles.push_back(vertices);
-        if (hasTexture)
-        {
-          out.textureCorners.push_back(textures);
-        }
-        result.inputTriangle.push_back(t);
-      }
-    }
+    collectBorder(t);
+    collectCuts(t, chord);
+    emitPieces(t, cutIntoFaces());
   }
-  if (chord != chords.end())
+  if (chord != chords.cend())
   {
     throw Error(label + ": a chord in an unaffected triangle (internal error)");
   }
-  return result;
+}
+
+void PathInsertion::collectBorder(int t)
+{
+  const Triangle& tri = mesh.triangles[t];
+  border.clear();
+  for (int k = 0; k < 3; ++k)
+  {
+    border.push_back({ tri[k], k, hasTexture ? mesh.textureCorners[t][k] : -1 });
+    const IntRange chain = chainOf(tri[k], tri[(k + 1) % 3]);
+    if (chain.size() <= 2)
+    {
+      continue;
+    }
+    const bool forward = chain.front() == tri[k];
+    for (std::size_t i = 1; i + 1 < chain.size(); ++i)
+    {
+      const int x = chain[static_cast<std::ptrdiff_t>(forward ? i : chain.size() - 1 - i)];
+      border.push_back({ x, k, hasTexture ? textureOf(x, t, k, (k + 1) % 3) : -1 });
+    }
+  }
+}
+
+void PathInsertion::collectCuts(int t, std::vector<Chord>::const_iterator& chord)
+{
+  // The chords in this triangle, once each; two cross when their ends
+  // alternate around the border (exact: no floating-point test).
+  cuts.clear();
+  for (; chord != chords.end() && chord->triangle == t; ++chord)
+  {
+    const int a = positionOf(chord->from);
+    const int b = positionOf(chord->to);
+    cuts.push_back({ std::min(a, b), std::max(a, b), chord->path });
+  }
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(),
+               cuts.end(),
+               [](const std::array<int, 3>& x, const std::array<int, 3>& y)
+               { return x[0] == y[0] && x[1] == y[1]; }),
+    cuts.end());
+  for (std::size_t i = 0; i < cuts.size(); ++i)
+  {
+    for (std::size_t j = i + 1; j < cuts.size(); ++j)
+    {
+      const auto& c = cuts[i];
+      const auto& d = cuts[j];
+      if ((c[0] < d[0] && d[0] < c[1] && c[1] < d[1]) ||
+          (d[0] < c[0] && c[0] < d[1] && d[1] < c[1]))
+      {
+        throw InvalidInputError(label + ": paths " + std::to_string(std::min(c[2], d[2])) +
+                                " and " + std::to_string(std::max(c[2], d[2])) +
+                                " cross inside triangle " + std::to_string(t) +
+                                " (paths may touch, never cross)");
+      }
+    }
+  }
+}
+
+/// Cuts the triangle along the chords into convex faces; returns the next
+/// free line label.
+int PathInsertion::cutIntoFaces()
+{
+  faceCount = 0;
+  {
+    Face& whole = newFace();
+    for (std::size_t i = 0; i < border.size(); ++i)
+    {
+      whole.points.push_back(static_cast<int>(i));
+      whole.lines.push_back(border[i].side);
+    }
+  }
+  int nextLine = 3;
+  for (const auto& cut : cuts)
+  {
+    const int line = nextLine++;
+    for (std::size_t f = 0; f < faceCount; ++f)
+    {
+      Face& face = faces[f];
+      const auto first = std::find(face.points.begin(), face.points.end(), cut[0]);
+      const auto second = std::find(face.points.begin(), face.points.end(), cut[1]);
+      if (first == face.points.end() || second == face.points.end())
+      {
+        continue;
+      }
+      // Points lo..hi stay (closed by the chord from hi to lo); the rest,
+      // hi..lo around the end, form the new face (closed from lo to hi).
+      const auto lo = std::min(first, second) - face.points.begin();
+      const auto hi = std::max(first, second) - face.points.begin();
+      split.points.assign(face.points.begin() + hi, face.points.end());
+      split.points.insert(split.points.end(), face.points.begin(), face.points.begin() + lo + 1);
+      split.lines.assign(face.lines.begin() + hi, face.lines.end());
+      split.lines.insert(split.lines.end(), face.lines.begin(), face.lines.begin() + lo);
+      split.lines.push_back(line);
+      face.points.erase(face.points.begin() + hi + 1, face.points.end());
+      face.points.erase(face.points.begin(), face.points.begin() + lo);
+      face.lines.erase(face.lines.begin() + hi, face.lines.end());
+      face.lines.erase(face.lines.begin(), face.lines.begin() + lo);
+      face.lines.push_back(line);
+      Face& added = newFace(); // may move the faces: `face` is not used again
+      std::swap(added.points, split.points);
+      std::swap(added.lines, split.lines);
+      break;
+    }
+  }
+  return nextLine;
+}
+
+void PathInsertion::emitPieces(int t, int nextLine)
+{
+  pieces.clear();
+  for (std::size_t f = 0; f < faceCount; ++f)
+  {
+    triangulateFace(faces[f], nextLine, border, out.positions, pieces);
+  }
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+  {
+    const auto& piece = pieces[i];
+    const Triangle vertices{
+      border[piece[0]].vertex, border[piece[1]].vertex, border[piece[2]].vertex
+    };
+    const Triangle textures{
+      border[piece[0]].texture, border[piece[1]].texture, border[piece[2]].texture
+    };
+    if (i == 0)
+    {
+      out.triangles[t] = vertices;
+      if (hasTexture)
+      {
+        out.textureCorners[t] = textures;
+      }
+    }
+    else
+    {
+      out.triangles.push_back(vertices);
+      if (hasTexture)
+      {
+        out.textureCorners.push_back(textures);
+      }
+      result.inputTriangle.push_back(t);
+    }
+  }
+}
+
+} // namespace
+
+RemeshedSurface insertPaths(const TriangleMesh& mesh,
+  const std::vector<SurfacePath>& paths,
+  double mergeTolerance)
+{
+  std::string label = "path re-meshing on " + meshLabel(mesh);
+  if (!(mergeTolerance >= 0.0 && mergeTolerance < 0.5))
+  {
+    std::ostringstream message;
+    message << label << ": merge tolerance must be at least 0 and below 0.5, got "
+            << mergeTolerance;
+    throw InvalidInputError(message.str());
+  }
+  mesh.checkConsistency();
+  return PathInsertion(mesh, paths, mergeTolerance, std::move(label)).run();
 }
 
 } // namespace thintissue
