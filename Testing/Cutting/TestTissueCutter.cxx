@@ -705,8 +705,8 @@ TEST(TissueCutterRegression, AVisualVertexOnAnEdgeOfASplitTriangleFollowsItsPiec
 // hexahedra hangs on a hexahedron holding a triangle around its own. When
 // the collision mesh opens at the corner the two triangles share, they go
 // to different pieces and nothing of that hexahedron is copied; the vertex
-// (on the steak, after a bite and a cut through it) had stayed on the other
-// piece's nodes.
+// (on the steak, after a bite and two cuts through it) had stayed on the
+// other piece's nodes.
 TEST(TissueCutterRegression, AVisualVertexHangingOnANeighbouringTriangleFollowsItsPiece)
 {
   const auto bundle = preparedSteak();
@@ -734,6 +734,10 @@ TEST(TissueCutterRegression, AVisualVertexHangingOnANeighbouringTriangleFollowsI
   }
   const std::vector<Blade> blades = {
     Blade::sweptOutline(low, high),
+    quad({ Vector3(-4.0281457347170928, 3.0185651175909163, -9.5373011489161978),
+      Vector3(-0.53062148268087062, 0.19779000323978368, 9.5422574296166598),
+      Vector3(1.4517482498712535, -2.6967904539852983, 9.5422592344408734),
+      Vector3(-2.0457760021649687, 0.12398466036583478, -9.5372993440919842) }),
     quad({ Vector3(-2.9975047430694688, -3.8828950247726817, -9.5373012096473389),
       Vector3(-2.9975047430694688, -3.8828950247726817, 9.5422573688855188),
       Vector3(-2.9825903213873048, 1.8409531178387106, 9.5422573688855188),
