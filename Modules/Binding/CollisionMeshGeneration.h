@@ -19,8 +19,9 @@
 //     first and last crossings of the line), radius half the distance.
 // The two-sided Hausdorff distance between the visual surface and the thick
 // surface of the result (mid-surface swept by its radii) is measured and
-// returned. Limits: one thickness axis (sheets, slabs, the meniscus, the
-// steak; not a sheet rolled into a tube), one outline loop (no holes).
+// returned. A band whose thickness direction turns along its length (a
+// twisted ligament) gets a grid along its centre curve with a local
+// thickness direction instead (BandMidSurface.h, MidSurfaceMethod).
 //
 // Simulation hexahedra: a sparse grid of cubes over the visual surface
 // (SparseHexahedralGrid), the cube size found so that the count is the one
@@ -40,6 +41,20 @@
 namespace thintissue
 {
 
+/// How the mid-surface follows the tissue's thickness.
+enum class MidSurfaceMethod
+{
+  /// Band for a clearly elongated tissue (length over width at least 3,
+  /// from the area's principal spreads), one axis otherwise; the other
+  /// when the first fails on a tissue elongated at least 2.
+  Automatic,
+  /// One thickness axis for the whole tissue (sheets, slabs, menisci).
+  OneAxis,
+  /// A grid along the band's centre curve, the thickness direction local
+  /// (ligaments; see BandMidSurface.h).
+  Band
+};
+
 struct CollisionMeshSettings
 {
   /// Vertices of the collision mid-surface (at least 8).
@@ -53,6 +68,7 @@ struct CollisionMeshSettings
   double maximumThicknessRatio = 0.35;
   /// Name of the radius array written on the result.
   std::string radiusArrayName = "Radius";
+  MidSurfaceMethod method = MidSurfaceMethod::Automatic;
 };
 
 struct GeneratedCollisionMesh
@@ -60,6 +76,11 @@ struct GeneratedCollisionMesh
   /// The mid-surface, with a per-vertex radius array.
   TriangleMesh mesh;
   int borderVertexCount = 0;
+  /// The method used (never Automatic) and, for a band, the largest angle
+  /// (radians) between its local thickness directions.
+  MidSurfaceMethod method = MidSurfaceMethod::OneAxis;
+  double thicknessTurn = 0.0;
+  /// The thickness axis (a band's: the mean of its local directions).
   Vector3 thicknessAxis = Vector3::UnitZ();
   /// Largest thickness over the extent across the axis.
   double thicknessRatio = 0.0;

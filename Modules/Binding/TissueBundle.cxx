@@ -1,6 +1,7 @@
 #include "TissueBundle.h"
 
 #include "AtomicFileWriter.h"
+#include "BandMidSurface.h"
 #include "BindingCache.h"
 #include "ThinTissueError.h"
 
@@ -121,7 +122,66 @@ nlohmann::json preparationMetadata(const TriangleMesh& visual,
   metadata["thicknessAxis"] = {
     generated.thicknessAxis.x(), generated.thicknessAxis.y(), generated.thicknessAxis.z()
   };
+  metadata["midSurface"] = generated.method == MidSurfaceMethod::Band ? "band" : "one axis";
+  if (generated.method == MidSurfaceMethod::Band)
+  {
+    metadata["thicknessTurnDegrees"] = generated.thicknessTurn * 180.0 / M_PI;
+  }
   return metadata;
+}
+
+/// The collision mid-surface and the binding to it. Automatic method: when
+/// the binding refuses the one-axis mid-surface of an elongated tissue (a
+/// band whose thickness direction turns: its paths cross), the band's
+/// mid-surface is bound instead; the first error when that fails too.
+void bindToMidSurface(const TriangleMesh& visual,
+  const TissuePreparationSettings& settings,
+  const GenerationProgress& collisionProgress,
+  const BindingProgress& bindingProgress,
+  GeneratedCollisionMesh& generated,
+  TissueBundle& bundle)
+{
+  VisualCollisionBindingSettings bindingSettings = settings.binding;
+  bindingSettings.radiusArrayName = settings.collision.radiusArrayName;
+  auto bind = [&](const CollisionMeshSettings& collisionSettings)
+  {
+    generated = makeCollisionMidSurface(visual, collisionSettings, collisionProgress);
+    bundle.collision = generated.mesh;
+    try
+    {
+      bundle.binding =
+        bindVisualToCollision(visual, bundle.collision, bindingSettings, bindingProgress);
+    }
+    catch (const BindingAbortedError& aborted)
+    {
+      throw GenerationAbortedError(aborted.what());
+    }
+  };
+  try
+  {
+    bind(settings.collision);
+  }
+  catch (const InvalidInputError&)
+  {
+    constexpr double MinimumBandElongation = 2.0; // as makeCollisionMidSurface's
+    if (settings.collision.method != MidSurfaceMethod::Automatic ||
+        generated.method != MidSurfaceMethod::OneAxis || generated.mesh.triangles.empty() ||
+        elongationOf(visual) < MinimumBandElongation)
+    {
+      throw;
+    }
+    CollisionMeshSettings band = settings.collision;
+    band.method = MidSurfaceMethod::Band;
+    try
+    {
+      bind(band);
+      return;
+    }
+    catch (const InvalidInputError&)
+    {
+    }
+    throw; // the one axis's error
+  }
 }
 
 /// prepareTissue with the units already found; `extra` goes into the
@@ -137,7 +197,7 @@ TissueBundle prepareOne(const TriangleMesh& input,
   // that the rim paths must separate: closed first, and reported.
   TunnelClosingReport tunnels;
   const TriangleMesh visual = closeSmallTunnels(input, &tunnels);
-  // Stages: collision mesh 0-0.2, hexahedra 0.2-0.25, binding 0.25-0.95,
+  // Stages: hexahedra 0-0.05, collision mesh 0.05-0.25, binding 0.25-0.95,
   // quality 0.95-1.
   auto stage = [&](double from, double to)
   {
@@ -152,22 +212,10 @@ TissueBundle prepareOne(const TriangleMesh& input,
     }
   };
   TissueBundle bundle;
-  const GeneratedCollisionMesh generated =
-    makeCollisionMidSurface(visual, settings.collision, stage(0.0, 0.2));
-  bundle.collision = generated.mesh;
-  announce(0.2, "making the hexahedra");
+  announce(0.0, "making the hexahedra");
   bundle.simulation = makeSimulationHexahedra(visual, settings.hexahedronCount);
-  VisualCollisionBindingSettings bindingSettings = settings.binding;
-  bindingSettings.radiusArrayName = settings.collision.radiusArrayName;
-  try
-  {
-    bundle.binding =
-      bindVisualToCollision(visual, bundle.collision, bindingSettings, stage(0.25, 0.95));
-  }
-  catch (const BindingAbortedError& aborted)
-  {
-    throw GenerationAbortedError(aborted.what());
-  }
+  GeneratedCollisionMesh generated;
+  bindToMidSurface(visual, settings, stage(0.05, 0.25), stage(0.25, 0.95), generated, bundle);
   bundle.visual = bundle.binding.visual;
   embed(bundle);
   announce(0.95, "measuring the quality");
