@@ -1,6 +1,7 @@
 #include "CollisionMeshGeneration.h"
 
 #include "BandMidSurface.h"
+#include "HandleRemoval.h"
 
 #include "MeshPieces.h"
 #include "MeshQueries.h"
@@ -1459,17 +1460,9 @@ std::vector<char> tunnelFootprints(const ShadowRaster& raster,
   return footprint;
 }
 
-} // namespace
-
-TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* report)
+/// The tunnels seen along the thickness axis closed (r's genus set).
+TriangleMesh closeShadowTunnels(const TriangleMesh& visual, TunnelClosingReport& r)
 {
-  TunnelClosingReport local;
-  TunnelClosingReport& r = report ? *report : local;
-  r = TunnelClosingReport{};
-  checkVisual(visual);
-  r.genusBefore = r.genusAfter = TriangleMeshAdjacency(visual).closedSurfaceGenus();
-  if (r.genusBefore <= 0)
-    return visual;
   const ProjectedSurface surface = projectionAlongThickness(visual);
   // A 1024th of the extent: a perforation of a thin rim can be a few tenths
   // of a millimetre across.
@@ -1527,6 +1520,35 @@ TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* 
     const Vector3 x = surface.lift(q, middle);
     r.changes.push_back("tunnel through the tissue at (" + std::to_string(x.x()) + ", " +
                         std::to_string(x.y()) + ", " + std::to_string(x.z()) + ")");
+  }
+  return closed;
+}
+
+} // namespace
+
+TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* report)
+{
+  TunnelClosingReport local;
+  TunnelClosingReport& r = report ? *report : local;
+  r = TunnelClosingReport{};
+  checkVisual(visual);
+  r.genusBefore = r.genusAfter = TriangleMeshAdjacency(visual).closedSurfaceGenus();
+  if (r.genusBefore <= 0)
+    return visual;
+  TriangleMesh closed = closeShadowTunnels(visual, r);
+  if (r.genusAfter == 0)
+    return closed;
+  // Tunnels hidden from the axis (slanted through a staircase's riser,
+  // under an overhang): small handles found by geodesic balls of up to a
+  // 40th of the diagonal (a tear's gap is larger and stays).
+  const std::size_t before = r.changes.size();
+  closed = removeSmallHandles(closed, visual.boundingBox().diagonal().norm() / 15.0, r.changes);
+  const int found = static_cast<int>(r.changes.size() - before);
+  if (found > 0)
+  {
+    r.tunnels += found;
+    r.genusAfter = TriangleMeshAdjacency(closed).closedSurfaceGenus();
+    r.closed = r.genusBefore - r.genusAfter;
   }
   return closed;
 }

@@ -15,6 +15,7 @@
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -453,6 +455,55 @@ void noteDegenerate(const Surface& surface,
   }
 }
 
+constexpr double Infinity = std::numeric_limits<double>::infinity();
+
+/// Triangles of area at most `area` that are neither caps nor needles but
+/// tiny all round (flying edges makes them where the iso-surface passes
+/// next to a sample: three crossings near one point): their shortest edge
+/// collapsed (where the link condition allows). False when some stay.
+bool collapseTinyTriangles(Surface& surface, double area)
+{
+  for (int pass = 0; pass < 8; ++pass)
+  {
+    bool changed = false;
+    bool left = false;
+    for (FaceIndex f : surface.faces())
+    {
+      if (surface.is_removed(f) || PMP::face_area(f, surface) > area)
+      {
+        continue;
+      }
+      HalfedgeIndex shortest = surface.halfedge(f);
+      double length = Infinity;
+      for (HalfedgeIndex h : CGAL::halfedges_around_face(surface.halfedge(f), surface))
+      {
+        const double l = CGAL::squared_distance(
+          surface.point(surface.source(h)), surface.point(surface.target(h)));
+        if (l < length)
+        {
+          length = l;
+          shortest = h;
+        }
+      }
+      if (CGAL::Euler::does_satisfy_link_condition(surface.edge(shortest), surface))
+      {
+        CGAL::Euler::collapse_edge(surface.edge(shortest), surface);
+        changed = true;
+      }
+      else
+      {
+        left = true;
+      }
+    }
+    surface.collect_garbage();
+    if (!changed)
+    {
+      return !left;
+    }
+  }
+  return false;
+}
+
 /// Zero-area triangles with three distinct corners: exactly collinear ones
 /// (CGAL remove_degenerate_faces), then those whose area is round-off only
 /// (CGAL's experimental remove_almost_degenerate_faces on just those).
@@ -487,6 +538,10 @@ void removeDegenerateTriangles(Surface& surface,
     log.note(Change::Degenerate, "some nearly flat triangles could not be removed");
   }
   surface.collect_garbage();
+  if (!collapseTinyTriangles(surface, DegenerateAreaTolerance * diagonal * diagonal))
+  {
+    log.note(Change::Degenerate, "some tiny triangles could not be removed");
+  }
 }
 
 /// Per vertex of the surface: the input vertex whose attributes it takes,

@@ -1,0 +1,226 @@
+// Issue 14's property test: every tissue model through the segmentation
+// test bed (vtkSimulatedSegmentationFilter) at random MRI-like spacings
+// (0.25-0.5 mm in-plane, 0.5-1.0 mm slices), noise (up to 0.1), grid phase
+// and seed, then prepared (collision mid-surface, hexahedra, binding) and
+// checked with the binding invariants. One ctest test per tissue model;
+// they run when THINTISSUE_SWEEP_CASES is set (too slow for the default
+// suite: measured rates in Documentation/Architecture.md).
+#include "vtkSimulatedSegmentationFilter.h"
+
+#include "BindingInvariants.h"
+#include "CollisionMeshGeneration.h"
+#include "KneeModels.h"
+#include "MeniscusModel.h"
+#include "MeshRepair.h"
+#include "MeshValidation.h"
+#include "ThinSheetModel.h"
+#include "TissueBundle.h"
+#include "vtkThinTissueConversion.h"
+
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <gtest/gtest-spi.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <random>
+#include <sstream>
+
+namespace
+{
+using namespace thintissue;
+
+/// The tissue models of the sweep, by name.
+TriangleMesh tissueModel(const std::string& name)
+{
+  const KneeSurroundingsParameters knee;
+  if (name == "AnteriorCruciateLigament")
+    return makeCruciateLigament(CruciateLigament::Anterior, knee).visual;
+  if (name == "PosteriorCruciateLigament")
+    return makeCruciateLigament(CruciateLigament::Posterior, knee).visual;
+  if (name == "TibialCartilage")
+    return makeTibialCartilage(knee).visual;
+  if (name == "Sheet")
+  {
+    ThinSheetParameters sheet;
+    sheet.width = 40.0;
+    sheet.depth = 30.0;
+    sheet.thickness = 2.0;
+    return makeThinSheet(sheet).visual;
+  }
+  MeniscusParameters parameters;
+  if (name == "LongitudinalTear")
+    parameters.tear = defaultMeniscusTear(MeniscusTearType::Longitudinal);
+  else if (name == "RadialTear")
+    parameters.tear = defaultMeniscusTear(MeniscusTearType::Radial);
+  else if (name == "FlapTear")
+    parameters.tear = defaultMeniscusTear(MeniscusTearType::Flap);
+  return makeMeniscus(parameters).visual;
+}
+
+/// One case of the sweep: the segmentation's settings drawn from the seed.
+struct SweepCase
+{
+  std::array<double, 3> spacing{};
+  std::array<double, 3> phase{};
+  double noise = 0.0;
+  unsigned seed = 0;
+
+  std::string toString() const
+  {
+    std::ostringstream text;
+    text << "spacing " << spacing[0] << " x " << spacing[1] << " x " << spacing[2] << ", phase "
+         << phase[0] << " " << phase[1] << " " << phase[2] << ", noise " << noise << ", seed "
+         << seed;
+    return text.str();
+  }
+};
+
+SweepCase sweepCase(unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  SweepCase c;
+  c.seed = seed;
+  c.spacing[0] = 0.25 + 0.25 * unit(random);
+  c.spacing[1] = 0.25 + 0.25 * unit(random);
+  c.spacing[2] = 0.5 + 0.5 * unit(random);
+  for (double& p : c.phase)
+    p = unit(random);
+  c.noise = 0.1 * unit(random);
+  return c;
+}
+
+TriangleMesh segmented(const TriangleMesh& tissue, const SweepCase& c)
+{
+  vtkNew<vtkSimulatedSegmentationFilter> filter;
+  filter->SetInputData(toPolyData(tissue));
+  filter->SetVoxelSpacing(c.spacing.data());
+  filter->SetGridPhase(c.phase.data());
+  filter->SetNoiseAmplitude(c.noise);
+  filter->SetSeed(c.seed);
+  filter->Update();
+  return fromPolyData(filter->GetOutput(), tissue.name + " segmented");
+}
+
+/// Prepared with the issue's settings (105 collision vertices, 42
+/// hexahedra), the binding checked; the failure's message, or empty.
+std::string prepareAndCheck(const TriangleMesh& mesh)
+{
+  TissuePreparationSettings settings;
+  settings.collision.vertexCount = 105;
+  settings.hexahedronCount = 42;
+  if (const char* m = std::getenv("SWEEP_METHOD"))
+    settings.collision.method =
+      std::string(m) == "band" ? MidSurfaceMethod::Band : MidSurfaceMethod::OneAxis;
+  try
+  {
+    // Degenerate triangles (flying edges through a sample) are refused
+    // with advice to repair: repaired, as the user told so would.
+    const TriangleMesh input =
+      validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh;
+    const TissueBundle bundle = prepareTissue(input, settings);
+    // The invariants' failures collected, the first one reported.
+    ::testing::TestPartResultArray results;
+    {
+      ::testing::ScopedFakeTestPartResultReporter collect(
+        ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &results);
+      // The surface the binding was given: tunnels closed first.
+      thintissue::testing::checkBinding(closeSmallTunnels(input), bundle.collision, bundle.binding);
+    }
+    for (int k = 0; k < results.size(); ++k)
+    {
+      if (results.GetTestPartResult(k).failed())
+        return std::string("binding invariant: ") + results.GetTestPartResult(k).message();
+    }
+  }
+  catch (const std::exception& error)
+  {
+    return error.what();
+  }
+  return {};
+}
+
+class SegmentationSweep : public ::testing::TestWithParam<std::string>
+{
+};
+
+/// Cases per tissue model: THINTISSUE_SWEEP_CASES (25 for the issue's 200
+/// cases); 0 when not set (a case costs 5-10 s on two cores: the sweep is
+/// a long run, not part of the default suite yet).
+int casesPerTissue()
+{
+  const char* text = std::getenv("THINTISSUE_SWEEP_CASES");
+  return text ? std::max(1, std::atoi(text)) : 0;
+}
+
+} // namespace
+
+// Every case prepares and binds, the invariants hold.
+TEST_P(SegmentationSweep, PreparesAndBinds)
+{
+  const int cases = casesPerTissue();
+  if (cases == 0)
+    GTEST_SKIP() << "set THINTISSUE_SWEEP_CASES (25: the issue's 200 cases)";
+  const TriangleMesh tissue = tissueModel(GetParam());
+  int failures = 0;
+  for (int k = 0; k < cases; ++k)
+  {
+    const SweepCase c = sweepCase(1000u + static_cast<unsigned>(k));
+    SCOPED_TRACE(GetParam() + ", " + c.toString());
+    const std::string failure = prepareAndCheck(segmented(tissue, c));
+    EXPECT_EQ(failure, "");
+    failures += failure.empty() ? 0 : 1;
+  }
+  std::cout << GetParam() << ": " << cases - failures << " of " << cases << " prepared\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryTissueModel,
+  SegmentationSweep,
+  ::testing::Values("Meniscus",
+    "LongitudinalTear",
+    "RadialTear",
+    "FlapTear",
+    "AnteriorCruciateLigament",
+    "PosteriorCruciateLigament",
+    "TibialCartilage",
+    "Sheet"),
+  [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+// Flying edges makes tiny triangles (three crossings next to one sample,
+// neither a cap nor a needle) that validation refuses as degenerate; the
+// repair it advises once reported them removed and left them (CGAL's
+// almost-degenerate removal takes only caps and needles): their shortest
+// edge is now collapsed.
+TEST(SegmentationSweep, RepairRemovesTheTinyTrianglesOfFlyingEdges)
+{
+  const TriangleMesh mesh = segmented(tissueModel("Meniscus"), sweepCase(1008));
+  ASSERT_GT(validateTriangleMesh(mesh).degenerateTriangles.count, 0u);
+  MeshRepairReport report;
+  const TriangleMesh repaired = repairTriangleMesh(mesh, {}, &report);
+  EXPECT_GT(report.removedDegenerateTriangles, 0);
+  const MeshValidationReport after = validateTriangleMesh(repaired);
+  EXPECT_TRUE(after.isClosedOutwardSingleSurface()) << after.toString();
+  EXPECT_NEAR(repaired.signedVolume(), mesh.signedVolume(), 1e-6 * mesh.signedVolume());
+}
+// Tunnels hidden from the thickness axis (slanted through a staircase's
+// riser, under an overhang) were left by the shadow's holes (genus 1 of
+// 20 here, and the binding refused the meniscus: "collision vertex 39
+// finds its positive visual vertex, and collision vertex 39 its negative
+// one, on one piece"). Geodesic balls that hold a non-separating loop now
+// find them; the meniscus prepares and binds.
+TEST(SegmentationSweep, TunnelsHiddenFromTheAxisAreClosed)
+{
+  const TriangleMesh mesh = segmented(tissueModel("Meniscus"), sweepCase(1005));
+  TunnelClosingReport report;
+  const TriangleMesh closed = closeSmallTunnels(mesh, &report);
+  EXPECT_GT(report.genusBefore, 10);
+  EXPECT_EQ(report.genusAfter, 0);
+  EXPECT_GE(std::count_if(report.changes.begin(),
+              report.changes.end(),
+              [](const std::string& c) { return c.rfind("handle", 0) == 0; }),
+    1);
+  EXPECT_TRUE(validateTriangleMesh(closed).isClosedOutwardSingleSurface());
+  EXPECT_NEAR(closed.signedVolume(), mesh.signedVolume(), 0.01 * mesh.signedVolume());
+  EXPECT_EQ(prepareAndCheck(mesh), "");
+}
