@@ -2,9 +2,12 @@
 // test bed (vtkSimulatedSegmentationFilter) at random MRI-like spacings
 // (0.25-0.5 mm in-plane, 0.5-1.0 mm slices), noise (up to 0.1), grid phase
 // and seed, then prepared (collision mid-surface, hexahedra, binding) and
-// checked with the binding invariants. One ctest test per tissue model;
-// they run when THINTISSUE_SWEEP_CASES is set (too slow for the default
-// suite: measured rates in Documentation/Architecture.md).
+// checked with the binding invariants. One ctest test per tissue model:
+// by default two cases each (about 25 s in all), every one must prepare
+// but one of the longitudinal tear's (its strips are narrower than the
+// lattice: open in issue 14); THINTISSUE_SWEEP_CASES=25 runs the issue's
+// 200 cases, every one required (measured rates in
+// Documentation/Architecture.md).
 #include "vtkSimulatedSegmentationFilter.h"
 
 #include "BindingInvariants.h"
@@ -147,12 +150,17 @@ class SegmentationSweep : public ::testing::TestWithParam<std::string>
 };
 
 /// Cases per tissue model: THINTISSUE_SWEEP_CASES (25 for the issue's 200
-/// cases); 0 when not set (a case costs 5-10 s on two cores: the sweep is
-/// a long run, not part of the default suite yet).
+/// cases), 2 when not set.
 int casesPerTissue()
 {
   const char* text = std::getenv("THINTISSUE_SWEEP_CASES");
-  return text ? std::max(1, std::atoi(text)) : 0;
+  return text ? std::max(1, std::atoi(text)) : 2;
+}
+
+/// Failures the default run tolerates (none with THINTISSUE_SWEEP_CASES).
+int toleratedFailures(const std::string& tissue)
+{
+  return std::getenv("THINTISSUE_SWEEP_CASES") == nullptr && tissue == "LongitudinalTear" ? 1 : 0;
 }
 
 } // namespace
@@ -161,8 +169,6 @@ int casesPerTissue()
 TEST_P(SegmentationSweep, PreparesAndBinds)
 {
   const int cases = casesPerTissue();
-  if (cases == 0)
-    GTEST_SKIP() << "set THINTISSUE_SWEEP_CASES (25: the issue's 200 cases)";
   const TriangleMesh tissue = tissueModel(GetParam());
   int failures = 0;
   for (int k = 0; k < cases; ++k)
@@ -170,9 +176,13 @@ TEST_P(SegmentationSweep, PreparesAndBinds)
     const SweepCase c = sweepCase(1000u + static_cast<unsigned>(k));
     SCOPED_TRACE(GetParam() + ", " + c.toString());
     const std::string failure = prepareAndCheck(segmented(tissue, c));
-    EXPECT_EQ(failure, "");
+    if (toleratedFailures(GetParam()) == 0)
+      EXPECT_EQ(failure, "");
+    else if (!failure.empty())
+      std::cout << "tolerated: " << failure << "\n";
     failures += failure.empty() ? 0 : 1;
   }
+  EXPECT_LE(failures, toleratedFailures(GetParam()));
   std::cout << GetParam() << ": " << cases - failures << " of " << cases << " prepared\n";
 }
 
