@@ -5,6 +5,7 @@
 #define VirtualDisplay_h
 
 #include <cstdlib>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,22 @@ inline void reexecuteUnderVirtualDisplay(int argc, char* argv[])
   }
   arguments.push_back(nullptr);
   execvp(arguments[0], arguments.data());
+}
+
+/// True when there is an X display. Otherwise the program runs again under
+/// xvfb-run (this call does not return then); if it cannot, says so as
+/// `program` and returns false.
+inline bool haveDisplayOrRerun(int argc, char* argv[], const char* program)
+{
+  const char* display = std::getenv("DISPLAY");
+  if (display != nullptr && display[0] != '\0')
+  {
+    return true;
+  }
+  reexecuteUnderVirtualDisplay(argc, argv);
+  std::cerr << program
+            << ": no X display and no working xvfb-run; install xvfb or run with DISPLAY set\n";
+  return false;
 }
 
 } // namespace thintissue::apps

@@ -219,12 +219,8 @@ int main(int argc, char* argv[])
   {
     return 2;
   }
-  const char* display = std::getenv("DISPLAY");
-  if (display == nullptr || display[0] == '\0')
+  if (!thintissue::apps::haveDisplayOrRerun(argc, argv, "ThinTissueDemo"))
   {
-    thintissue::apps::reexecuteUnderVirtualDisplay(argc, argv);
-    std::cerr << "ThinTissueDemo: no X display and no working xvfb-run; install xvfb or run "
-                 "with DISPLAY set\n";
     return 3;
   }
 

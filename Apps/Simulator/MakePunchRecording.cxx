@@ -26,25 +26,6 @@ Vector3 centroid(const std::vector<Vector3>& points)
   return sum / static_cast<double>(points.size());
 }
 
-/// The stylus position that puts the instrument's tool point `local` at
-/// `target` through the portal (fixed-point iteration on the mapping).
-Vector3 stylusFor(const PortalMapping& mapping,
-  const Eigen::Quaterniond& orientation,
-  const Vector3& local,
-  const Vector3& target)
-{
-  HapticDeviceState stylus;
-  stylus.orientation = orientation.toRotationMatrix();
-  for (int iteration = 0; iteration < 100; ++iteration)
-  {
-    const Vector3 error = target - mapping.instrumentPose(stylus) * local;
-    stylus.position += error;
-    if (error.norm() < 1e-9)
-      break;
-  }
-  return stylus.position;
-}
-
 /// A point of the curve at `fraction` of its data points, with the unit
 /// horizontal direction into the tissue there.
 void borderAt(const MonitorCurve& curve, double fraction, Vector3& point, Vector3& inward)
@@ -82,6 +63,7 @@ int main(int argc, char** argv)
   const PortalMapping mapping(portal);
   // The stylus's +y (the jaws' opening side) turned to world +z.
   const Eigen::Quaterniond up(Eigen::AngleAxisd(M_PI / 2, Vector3::UnitX()));
+  const Eigen::Matrix3d rotation = up.toRotationMatrix();
 
   SceneRecording recording;
   recording.scenario = argv[3];
@@ -104,10 +86,10 @@ int main(int argc, char** argv)
     Vector3 point, inward;
     borderAt(border, 0.35 + 0.3 * bite / 4.0, point, inward);
     const Vector3 target = point + 0.8 * inward + Vector3(0.0, 0.0, 0.3);
-    const Vector3 on = stylusFor(mapping, up, outline, target);
-    const Vector3 beside = stylusFor(mapping, up, outline, target - 3.0 * inward);
-    const Vector3 above =
-      stylusFor(mapping, up, outline, target - 3.0 * inward + Vector3(0.0, 0.0, 6.0));
+    const Vector3 on = mapping.stylusPositionPlacing(outline, target, rotation);
+    const Vector3 beside = mapping.stylusPositionPlacing(outline, target - 3.0 * inward, rotation);
+    const Vector3 above = mapping.stylusPositionPlacing(
+      outline, target - 3.0 * inward + Vector3(0.0, 0.0, 6.0), rotation);
     sample(t, above, 0);
     sample(t += 0.3, beside, 0);
     sample(t += 0.3, on, 0);

@@ -48,7 +48,7 @@ Vector3 toolPoint(const SurgicalInstrumentModel& model, const std::string& point
 }
 
 /// The stylus sample putting tool point `local` at `target` with the
-/// working side toward `up` (fixed-point iteration on the mapping).
+/// working side toward `up`.
 HapticSample sampleFor(const PortalMapping& mapping, const Vector3& local, const Json& frame)
 {
   HapticSample sample;
@@ -58,17 +58,8 @@ HapticSample sampleFor(const PortalMapping& mapping, const Vector3& local, const
   // The stylus's working axis turned onto `up` (device frame = world here).
   sample.orientation =
     Eigen::Quaterniond::FromTwoVectors(mapping.settings().stylusUp, up.normalized());
-  HapticDeviceState stylus;
-  stylus.orientation = sample.orientation.toRotationMatrix();
-  const Vector3 target = vectorOf(frame.at("target"));
-  for (int iteration = 0; iteration < 100; ++iteration)
-  {
-    const Vector3 error = target - mapping.instrumentPose(stylus) * local;
-    stylus.position += error;
-    if (error.norm() < 1e-9)
-      break;
-  }
-  sample.position = stylus.position;
+  sample.position = mapping.stylusPositionPlacing(
+    local, vectorOf(frame.at("target")), sample.orientation.toRotationMatrix());
   return sample;
 }
 

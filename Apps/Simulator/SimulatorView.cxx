@@ -59,13 +59,15 @@ vtkSmartPointer<vtkPolyData> withNormals(const TriangleMesh& mesh)
 }
 
 /// Meniscus and tissues brought in: pale, fibrocartilage white; cartilage:
-/// bluish white; ligaments: pink.
+/// bluish white; ligaments: pink (the posterior a little darker).
 std::array<double, 3> tissueColour(const std::string& model)
 {
   if (model == "tibial_cartilage")
     return { 0.82, 0.86, 0.92 };
-  if (model == "anterior_cruciate_ligament" || model == "posterior_cruciate_ligament")
+  if (model == "anterior_cruciate_ligament")
     return { 0.88, 0.62, 0.58 };
+  if (model == "posterior_cruciate_ligament")
+    return { 0.84, 0.58, 0.56 };
   return { 0.96, 0.93, 0.88 };
 }
 
@@ -113,14 +115,11 @@ void SimulatorView::addKnee()
     { "anterior_cruciate_ligament", &knee.anteriorCruciateLigament },
     { "posterior_cruciate_ligament", &knee.posteriorCruciateLigament },
   };
-  const std::array<double, 3> colours[] = {
-    { 0.82, 0.86, 0.92 }, { 0.88, 0.62, 0.58 }, { 0.84, 0.58, 0.56 }
-  };
-  for (std::size_t k = 0; k < 3; ++k)
+  for (const auto& [name, part] : softParts)
   {
-    if (scenario.tissueModel != softParts[k].first)
+    if (scenario.tissueModel != name)
     {
-      add(*softParts[k].second, colours[k], true);
+      add(*part, tissueColour(name), true);
     }
   }
 }

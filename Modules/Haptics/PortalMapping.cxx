@@ -86,6 +86,25 @@ RigidPose PortalMapping::instrumentPose(const HapticDeviceState& stylus) const
   return pose;
 }
 
+Vector3 PortalMapping::stylusPositionPlacing(const Vector3& toolPoint,
+  const Vector3& target,
+  const Eigen::Matrix3d& stylusOrientation) const
+{
+  HapticDeviceState stylus;
+  stylus.orientation = stylusOrientation;
+  // The tip moves with the stylus (scaled, turned): step the stylus by the
+  // world error brought back to the device frame.
+  const Eigen::Matrix3d worldToDevice = Settings.deviceToWorld.transpose() / Settings.scale;
+  for (int iteration = 0; iteration < 100; ++iteration)
+  {
+    const Vector3 error = target - instrumentPose(stylus) * toolPoint;
+    stylus.position += worldToDevice * error;
+    if (error.norm() < 1e-10 * (1.0 + target.norm()))
+      break;
+  }
+  return stylus.position;
+}
+
 Vector3 PortalMapping::deviceForce(const Vector3& worldForce) const
 {
   return Settings.forceScale * (Settings.deviceToWorld.transpose() * worldForce);

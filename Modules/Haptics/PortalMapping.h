@@ -55,6 +55,14 @@ public:
   /// A world force on the instrument as the stylus should render it
   /// (device frame).
   Vector3 deviceForce(const Vector3& worldForce) const;
+  /// The inverse, for recordings made from key frames: the stylus position
+  /// that puts `toolPoint` (tool frame) at `target` (world) with the stylus
+  /// held at `stylusOrientation` (fixed-point iteration on instrumentPose;
+  /// converges for points near the tip, a few mm, beyond the minimum
+  /// insertion).
+  Vector3 stylusPositionPlacing(const Vector3& toolPoint,
+    const Vector3& target,
+    const Eigen::Matrix3d& stylusOrientation = Eigen::Matrix3d::Identity()) const;
   /// Where the stylus tip maps before the fulcrum (world).
   Vector3 mappedTip(const Vector3& devicePosition) const;
 

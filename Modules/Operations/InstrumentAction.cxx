@@ -180,37 +180,26 @@ bool InstrumentAction::jawsJustClosed(const InstrumentCommand& command) const
          command.jawOpening <= Settings.closedJawOpening;
 }
 
-Blade InstrumentAction::bladeFor(const InstrumentCommand& command, OperationKind& kind)
+OperationKind InstrumentAction::actsNow(const InstrumentCommand& command)
 {
-  kind = OperationKind::None;
   switch (Model.type)
   {
     case SurgicalInstrumentType::Punch:
-      if (!jawsJustClosed(command))
-        return {};
-      kind = OperationKind::Bite;
-      return punchBite(command.pose);
+      return jawsJustClosed(command) ? OperationKind::Bite : OperationKind::None;
     case SurgicalInstrumentType::Scissors:
-      if (command.jawOpening >= Previous.jawOpening)
-        return {};
-      kind = OperationKind::Cut;
-      return scissorsStroke(Previous, command);
+      return command.jawOpening < Previous.jawOpening ? OperationKind::Cut : OperationKind::None;
     case SurgicalInstrumentType::Scalpel:
-      if (!command.working || !Previous.working)
-        return {};
-      kind = OperationKind::Cut;
-      return scalpelStroke(Previous, command);
+      return command.working && Previous.working ? OperationKind::Cut : OperationKind::None;
     case SurgicalInstrumentType::SmallShaver:
     case SurgicalInstrumentType::LargeShaver:
       if (!command.working || command.time - LastShave < Settings.shaverBitePeriod)
-        return {};
+        return OperationKind::None;
       LastShave = command.time;
-      kind = OperationKind::Shave;
-      return shaverBite(command.pose);
+      return OperationKind::Shave;
     case SurgicalInstrumentType::ProbeHook:
       break;
   }
-  return {};
+  return OperationKind::None;
 }
 
 InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
@@ -223,7 +212,9 @@ InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
     HasPrevious = true;
     return result;
   }
-  const Blade blade = bladeFor(command, result.kind);
+  result.kind = actsNow(command);
+  const Blade blade =
+    result.kind == OperationKind::None ? Blade{} : bladeBetween(Previous, command);
   Previous = command;
   if (blade.empty())
   {
@@ -243,7 +234,8 @@ InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
   }
   for (const TissuePiece& piece : result.report.handedOver)
   {
-    result.removedVolume += restVolume(piece);
+    result.pieceVolumes.push_back(restVolume(piece));
+    result.removedVolume += result.pieceVolumes.back();
   }
   Operations += result.report.changed() ? 1 : 0;
   return result;

@@ -30,6 +30,7 @@
 #include "TissueCutter.h"
 
 #include <string>
+#include <vector>
 
 namespace thintissue
 {
@@ -65,6 +66,8 @@ struct InstrumentActionResult
   /// visual surfaces (0 when the cutter has no visual mesh or keeps its
   /// free pieces).
   double removedVolume = 0.0;
+  /// Per piece of report.handedOver, its rest volume (mm^3).
+  std::vector<double> pieceVolumes;
   /// Set when the cutter refused the blade (a tool that did not move, say):
   /// the tissue is untouched.
   std::string refused;
@@ -122,7 +125,9 @@ public:
   Blade bladeBetween(const InstrumentCommand& before, const InstrumentCommand& now) const;
 
 private:
-  Blade bladeFor(const InstrumentCommand& command, OperationKind& kind);
+  /// Whether the instrument acts this step, and how (the shaver's bite
+  /// period counted from here).
+  OperationKind actsNow(const InstrumentCommand& command);
   Blade scissorsStroke(const InstrumentCommand& before, const InstrumentCommand& now) const;
   Blade scalpelStroke(const InstrumentCommand& before, const InstrumentCommand& now) const;
   bool jawsJustClosed(const InstrumentCommand& command) const;

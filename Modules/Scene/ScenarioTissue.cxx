@@ -130,21 +130,15 @@ void holdNodes(HexahedralMesh& mesh, const std::string& rule)
   for (const Vector3& x : mesh.nodes)
     box.extend(x);
   const Vector3 size = box.sizes();
+  int longest = 0;
+  size.maxCoeff(&longest);
+  const double margin = 0.05 * size[longest];
   for (std::size_t n = 0; n < mesh.nodeCount(); ++n)
   {
     const Vector3& x = mesh.nodes[n];
-    bool held = false;
-    if (rule == "ends")
-    {
-      int longest = 0;
-      size.maxCoeff(&longest);
-      const double margin = 0.05 * size[longest];
-      held = x[longest] <= box.min()[longest] + margin || x[longest] >= box.max()[longest] - margin;
-    }
-    else if (rule == "bottom")
-    {
-      held = x.z() <= box.min().z() + 0.1 * size.z();
-    }
+    const bool held = rule == "ends" ? x[longest] <= box.min()[longest] + margin ||
+                                         x[longest] >= box.max()[longest] - margin
+                                     : x.z() <= box.min().z() + 0.1 * size.z(); // "bottom"
     mesh.fixedNodes[n] = held ? 1 : 0;
   }
 }

@@ -128,7 +128,6 @@ void TrainingScene::rebuildCollisionMesh()
   std::vector<double> radii;
   std::vector<int> hexahedra;
   std::vector<Vector3> local;
-  const std::vector<Vector3> current = Cutter->currentCollisionPositions();
   for (std::size_t t = 0; t < cut.triangleCount(); ++t)
   {
     if (!Cutter->isActive(static_cast<int>(t)))
@@ -139,7 +138,7 @@ void TrainingScene::rebuildCollisionMesh()
       if (newIndex[v] < 0)
       {
         newIndex[v] = static_cast<int>(active.positions.size());
-        active.positions.push_back(current[v]);
+        active.positions.push_back(cut.restPositions()[v]);
         radii.push_back(cut.radii()[v]);
         hexahedra.push_back(embedding.hexahedron(v));
         local.push_back(embedding.localCoordinates(v));
@@ -239,15 +238,16 @@ void TrainingScene::operate(const HapticToolState& instrument)
   ++TopologyVersion;
   ++Metrics.operations;
   Metrics.removedVolume += done.removedVolume;
-  for (const TissuePiece& piece : done.report.handedOver)
+  for (std::size_t p = 0; p < done.report.handedOver.size(); ++p)
   {
+    const std::vector<Vector3>& rest = done.report.handedOver[p].visualRest;
     Vector3 centre = Vector3::Zero();
-    for (const Vector3& x : piece.visualRest)
+    for (const Vector3& x : rest)
       centre += x;
-    centre /= static_cast<double>(std::max<std::size_t>(1, piece.visualRest.size()));
+    centre /= static_cast<double>(std::max<std::size_t>(1, rest.size()));
     const bool inTarget = Scenario.targetRadius > 0.0 &&
                           (centre - Scenario.targetCentre).norm() <= Scenario.targetRadius;
-    (inTarget ? Metrics.removedInTarget : Metrics.removedOutsideTarget) += restVolume(piece);
+    (inTarget ? Metrics.removedInTarget : Metrics.removedOutsideTarget) += done.pieceVolumes[p];
   }
   if (Wrinkles)
   {

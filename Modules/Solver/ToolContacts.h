@@ -54,7 +54,7 @@ public:
   /// its collision vertices in the hexahedron copy holding their branch,
   /// which a nearest-hexahedron search cannot tell from the original: they
   /// share their rest geometry). `embedding` has one point per vertex of
-  /// `collision`, whose positions are its current ones.
+  /// `collision` (rest positions; update() maps the current ones).
   DeformableCollisionMesh(const TriangleMesh& collision,
     HexahedralEmbedding embedding,
     double contactDistance = 0.0);

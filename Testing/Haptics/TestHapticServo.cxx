@@ -122,6 +122,20 @@ TEST(PortalMapping, TheShaftPassesThroughThePortalForAnyStylusPose)
       EXPECT_LT((pose.translation - mapped).norm(), 1e-9);
     }
   }
+  // The inverse places a point near the tip where asked.
+  for (int k = 0; k < 200; ++k)
+  {
+    const Vector3 target = s.portal + 30.0 * s.inward.normalized() +
+                           0.2 * Vector3(position(random), position(random), position(random));
+    const Eigen::Matrix3d orientation =
+      Eigen::AngleAxisd(angle(random), Vector3(1.0, 2.0, position(random)).normalized())
+        .toRotationMatrix();
+    const Vector3 point(1.5, -0.5, 2.0);
+    HapticDeviceState placed;
+    placed.orientation = orientation;
+    placed.position = portal.stylusPositionPlacing(point, target, orientation);
+    EXPECT_LT((portal.instrumentPose(placed) * point - target).norm(), 1e-8) << k;
+  }
   // Roll: turning the stylus about the shaft turns the working side with it.
   HapticDeviceState stylus;
   stylus.position = Vector3(3.0, 4.0, 0.0);
