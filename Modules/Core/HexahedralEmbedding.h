@@ -13,6 +13,7 @@
 #define HexahedralEmbedding_h
 
 #include "HexahedralMesh.h"
+#include "ReservedVector.h"
 #include "ThinTissueCoreModule.h"
 #include "TrilinearCoordinates.h"
 
@@ -212,8 +213,8 @@ public:
   /// cut would otherwise copy every point's coordinates once in a while).
   void reserve(std::size_t pointCount)
   {
-    HexahedronOfPoint.reserve(pointCount);
-    LocalCoordinates.reserve(pointCount);
+    reserveTouched(HexahedronOfPoint, pointCount);
+    reserveTouched(LocalCoordinates, pointCount, Vector3::Zero().eval());
   }
   /// Sets the hexahedron and local coordinates of one point directly (e.g. a
   /// vertex moved to the duplicate of its hexahedron by a cut). The

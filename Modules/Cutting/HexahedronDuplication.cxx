@@ -121,24 +121,29 @@ bool HexahedralBranches::meets(const CuttableCollisionMesh& collision, int trian
 
 int HexahedralBranches::copyHolding(int h, const std::vector<int>& triangles) const
 {
-  std::vector<int> sorted(triangles);
-  std::sort(sorted.begin(), sorted.end());
-  for (int copy : Copies[Original[h]])
+  int holder = -1;
+  for (int t : triangles)
   {
-    if (sortedIntersect(HexTriangles[copy], sorted))
-      return copy;
+    const int copy = copyHolding(h, t);
+    if (copy >= 0 && (holder < 0 || copy < holder))
+      holder = copy;
   }
-  return -1;
+  return holder;
 }
 
 int HexahedralBranches::copyHolding(int h, int triangle) const
 {
-  for (int copy : Copies[Original[h]])
+  // A triangle meets few hexahedra (those its grown box meets), an original
+  // may have many copies after a shaver has passed: look among the first.
+  // Copies are appended, so the first copy in Copies is the lowest index.
+  const int original = Original[h];
+  int holder = -1;
+  for (int copy : TriangleHexes[triangle])
   {
-    if (std::binary_search(HexTriangles[copy].begin(), HexTriangles[copy].end(), triangle))
-      return copy;
+    if (Original[copy] == original && (holder < 0 || copy < holder))
+      holder = copy;
   }
-  return -1;
+  return holder;
 }
 
 void HexahedralBranches::assignPieces(const CuttableCollisionMesh& collision,

@@ -1,6 +1,7 @@
 #include "TissueCutter.h"
 
 #include "CorotationalHexFem.h"
+#include "ReservedVector.h"
 #include "ThinTissueError.h"
 
 #include <algorithm>
@@ -59,14 +60,15 @@ TissueCutter::TissueCutter(const VisualCollisionBinding& binding,
   HasVisual = true;
   VisualEmbedding.embed(Simulation, Visual.mesh().positions);
   // Cuts add visual vertices: room for as many as the visual mesh reserves.
-  VisualEmbedding.reserve(Visual.mesh().positions.capacity());
-  VisualSeen.reserve(Visual.mesh().positions.capacity());
+  const std::size_t room = Visual.mesh().positions.capacity();
+  VisualEmbedding.reserve(room);
   VisualSeen.assign(Visual.mesh().vertexCount(), 0);
+  reserveTouched(VisualSeen, room);
   VisualOfHexahedron.resize(Simulation.hexahedronCount());
-  VisualIndirect.reserve(Visual.mesh().positions.capacity());
   VisualIndirect.assign(Visual.mesh().vertexCount(), 0);
-  WatchedIn.reserve(Visual.mesh().positions.capacity());
+  reserveTouched(VisualIndirect, room);
   WatchedIn.assign(Visual.mesh().vertexCount(), -1);
+  reserveTouched(WatchedIn, room);
   WatchedOfHexahedron.resize(Simulation.hexahedronCount());
   for (int v = 0; v < static_cast<int>(Visual.mesh().vertexCount()); ++v)
   {
@@ -202,23 +204,27 @@ std::vector<int> TissueCutter::reembedCollision(const TissueCutReport& report)
   {
     CollisionEmbedding.appendPoints(newRest, Simulation, candidates);
   }
-  // Every vertex of a touched hexahedron goes to the copy holding its fan.
+  // Every vertex of a touched hexahedron goes to the copy holding its fan
+  // (each once: marked, not sorted, as an original's copies share most).
+  CollisionSeen.resize(Collision.vertexCount(), 0);
   std::vector<int> vertices;
-  for (int h : report.simulation.touchedHexahedra)
+  auto take = [&](int v)
   {
-    for (int copy : Branches.copiesOf(h))
+    if (!CollisionSeen[v])
     {
-      for (int t : Branches.trianglesOf(copy))
-      {
-        const Triangle& tri = Collision.triangles()[t];
-        vertices.insert(vertices.end(), tri.begin(), tri.end());
-      }
+      CollisionSeen[v] = 1;
+      vertices.push_back(v);
     }
-  }
+  };
+  for (int h : report.simulation.touchedHexahedra)
+    for (int copy : Branches.copiesOf(h))
+      for (int t : Branches.trianglesOf(copy))
+        for (int v : Collision.triangles()[t])
+          take(v);
   for (int v = firstNewVertex; v < static_cast<int>(Collision.vertexCount()); ++v)
-    vertices.push_back(v);
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    take(v);
+  for (int v : vertices)
+    CollisionSeen[v] = 0;
   std::vector<int> moved;
   for (int v : vertices)
   {
@@ -234,6 +240,7 @@ std::vector<int> TissueCutter::reembedCollision(const TissueCutReport& report)
       moved.push_back(v);
     }
   }
+  std::sort(moved.begin(), moved.end());
   return moved;
 }
 

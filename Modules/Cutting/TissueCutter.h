@@ -184,6 +184,7 @@ private:
   std::vector<std::vector<int>> VisualOfHexahedron;
   /// Per visual vertex, 0 between cuts: marks while a cut re-embeds.
   std::vector<char> VisualSeen;
+  std::vector<char> CollisionSeen; ///< per collision vertex, all 0 between cuts
   /// Visual vertices a cut may move to another piece without copying
   /// their hexahedron, revisited by the cuts that may have done so:
   /// - those embedded in a hexahedron that holds a triangle around their

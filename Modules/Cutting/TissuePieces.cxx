@@ -212,7 +212,7 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
 TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
 {
   TissuePiece piece;
-  const std::vector<Vector3> current = currentCollisionPositions();
+  const std::vector<Vector3>& nodeCurrent = Solver ? Solver->positions() : Simulation.nodes;
   Renumbering collisionVertices;
   piece.collision.name = Collision.name() + " piece";
   for (int t : triangles)
@@ -226,7 +226,7 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
   for (int v : collisionVertices.oldOf)
   {
     piece.collision.positions.push_back(Collision.restPositions()[v]);
-    piece.collisionCurrent.push_back(current[v]);
+    piece.collisionCurrent.push_back(CollisionEmbedding.mapPosition(v, nodeCurrent));
     radii.push_back(Collision.radii()[v]);
   }
   piece.collision.pointAttributes.set(Settings.radiusArrayName, 1, radii);
@@ -251,14 +251,13 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
   {
     piece.simulation.nodes.push_back(Simulation.nodes[n]);
     piece.simulation.fixedNodes.push_back(Simulation.isFixed(n) ? 1 : 0);
-    piece.nodeCurrent.push_back(Solver ? Solver->positions()[n] : Simulation.nodes[n]);
+    piece.nodeCurrent.push_back(nodeCurrent[n]);
   }
   if (!HasVisual)
     return piece;
   std::vector<char> inPiece(Collision.triangleCount(), 0);
   for (int t : triangles)
     inPiece[t] = 1;
-  const std::vector<Vector3> visualCurrent = currentVisualPositions();
   Renumbering visualVertices;
   piece.visual.name = Visual.mesh().name + " piece";
   for (std::size_t t = 0; t < Visual.mesh().triangleCount(); ++t)
@@ -269,9 +268,10 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
     piece.visual.triangles.push_back(
       { { visualVertices(tri[0]), visualVertices(tri[1]), visualVertices(tri[2]) } });
   }
+  // Only the piece's own vertices mapped (not the whole visual mesh).
   for (int v : visualVertices.oldOf)
   {
-    piece.visual.positions.push_back(visualCurrent[v]);
+    piece.visual.positions.push_back(VisualEmbedding.mapPosition(v, nodeCurrent));
     piece.visualRest.push_back(Visual.mesh().positions[v]);
   }
   piece.visual.computeVertexNormals();

@@ -3,6 +3,8 @@
 #include "PathRemeshing.h"
 #include "VisualMeshCutPrivate.h"
 
+#include "ReservedVector.h"
+
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -416,29 +418,30 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
 void CuttableVisualMesh::reserveRoom()
 {
   // Cuts append vertices and triangles: room for a quarter more up front,
-  // so that the first cuts do not copy the whole mesh to grow it.
+  // so that the first cuts do not copy the whole mesh to grow it, with its
+  // pages touched now rather than by the cuts (reserveTouched).
   const std::size_t vertices = Mesh.vertexCount() + Mesh.vertexCount() / 4 + 64;
   const std::size_t triangles = Mesh.triangleCount() + Mesh.triangleCount() / 4 + 64;
-  Mesh.positions.reserve(vertices);
+  reserveTouched(Mesh.positions, vertices, Vector3::Zero().eval());
   if (Mesh.hasNormals())
-    Mesh.normals.reserve(vertices);
-  Bindings.reserve(vertices);
+    reserveTouched(Mesh.normals, vertices, Vector3::Zero().eval());
+  reserveTouched(Bindings, vertices);
   // Point attributes and texture coordinates too: growing one of them in a
   // cut copied it into fresh pages (on the 1M-triangle sheet, 2,000 page
   // faults, three quarters of the cut).
   for (const std::string& name : Mesh.pointAttributes.names())
   {
     AttributeArray& array = Mesh.pointAttributes.get(name);
-    array.values.reserve(vertices * static_cast<std::size_t>(array.components));
+    reserveTouched(array.values, vertices * static_cast<std::size_t>(array.components));
   }
   const std::size_t textures = Mesh.textureCoordinates.size();
-  Mesh.textureCoordinates.reserve(textures + textures / 4 + 64);
-  Mesh.triangles.reserve(triangles);
+  reserveTouched(Mesh.textureCoordinates, textures + textures / 4 + 64, Vector2::Zero().eval());
+  reserveTouched(Mesh.triangles, triangles);
   if (Mesh.hasTextureCoordinates())
-    Mesh.textureCorners.reserve(triangles);
-  TriangleRegion.reserve(triangles);
-  TriangleSide.reserve(triangles);
-  TriangleMaterial.reserve(triangles);
+    reserveTouched(Mesh.textureCorners, triangles);
+  reserveTouched(TriangleRegion, triangles);
+  reserveTouched(TriangleSide, triangles);
+  reserveTouched(TriangleMaterial, triangles);
   // The per-vertex scratch at its full size now: grown (and its pages first
   // touched) during the first cut, it had cost that cut a copy of the mesh's
   // size.
