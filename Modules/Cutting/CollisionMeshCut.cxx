@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace thintissue
@@ -27,8 +28,7 @@ struct CuttableCollisionMesh::TriangleFeatures
   std::vector<int> edgeOf;          ///< triangle edge k of an edge point, -1 for a corner
   std::vector<int> cornerOf;        ///< corner k of a corner, -1 for an edge point
   std::vector<int> features;        ///< polygon positions on the cut
-  int cutFrom = -1;                 ///< polygon positions joined by the cut, or -1
-  int cutTo = -1;
+  std::vector<int> tipFeatures;     ///< those that are only a tip left earlier
 };
 
 namespace
@@ -372,55 +372,181 @@ std::vector<CuttableCollisionMesh::TriangleFeatures> CuttableCollisionMesh::coll
       if (f.cornerOf[i] >= 0 && !isFeature && Tips.count(f.polygon[i]))
       {
         f.features.push_back(static_cast<int>(i));
+        f.tipFeatures.push_back(static_cast<int>(i));
       }
     }
     reached.push_back(std::move(f));
   }
+  keepNearestTipLinks(reached);
   return reached;
+}
+
+void CuttableCollisionMesh::keepNearestTipLinks(std::vector<TriangleFeatures>& reached) const
+{
+  // A tip is a feature of every reached triangle around it, but the blade
+  // went on from it through one: the triangle where the next feature is
+  // nearest (ties: each, as along an edge both sides list it). Joining it
+  // in the others too cut a triangle out between two of them.
+  auto at = [this](const TriangleFeatures& f, int i)
+  {
+    const Triangle& corners = Triangles[f.triangle];
+    return Vector3(f.barycentric[i][0] * RestPositions[corners[0]] +
+                   f.barycentric[i][1] * RestPositions[corners[1]] +
+                   f.barycentric[i][2] * RestPositions[corners[2]]);
+  };
+  auto link = [&](const TriangleFeatures& f, int tip)
+  {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i : f.features)
+      if (i != tip &&
+          std::find(f.tipFeatures.begin(), f.tipFeatures.end(), i) == f.tipFeatures.end())
+        nearest = std::min(nearest, (at(f, i) - at(f, tip)).norm());
+    return nearest;
+  };
+  std::unordered_map<int, double> shortest;
+  for (const TriangleFeatures& f : reached)
+    for (int tip : f.tipFeatures)
+    {
+      const auto [it, added] = shortest.emplace(f.polygon[tip], link(f, tip));
+      it->second = added ? it->second : std::min(it->second, link(f, tip));
+    }
+  for (TriangleFeatures& f : reached)
+    for (int tip : f.tipFeatures)
+    {
+      const double best = shortest.at(f.polygon[tip]);
+      if (link(f, tip) > best * (1.0 + 1e-9))
+        f.features.erase(std::find(f.features.begin(), f.features.end(), tip));
+    }
+}
+
+namespace
+{
+
+bool onTriangleEdge(const std::vector<int>& edgeOf,
+  const std::vector<int>& cornerOf,
+  int position,
+  int k)
+{
+  return edgeOf[position] == k || cornerOf[position] == k || cornerOf[position] == (k + 1) % 3;
+}
+
+/// The edge of the triangle holding polygon positions i and j of its cut
+/// polygon (a cut between them runs along it), or -1.
+int sharedEdge(const std::vector<int>& edgeOf, const std::vector<int>& cornerOf, int i, int j)
+{
+  for (int k = 0; k < 3; ++k)
+    if (onTriangleEdge(edgeOf, cornerOf, i, k) && onTriangleEdge(edgeOf, cornerOf, j, k))
+      return k;
+  return -1;
+}
+
+/// The features in the order the cut passes them: the shortest path
+/// through all of them. A blade that crossed the whole triangle in one step
+/// and also reached a tip, or snapped to a corner, passes three or more;
+/// joining only two of them (as before) cut the third off as a fragment.
+std::vector<int> featureChain(const std::vector<Vector3>& barycentric, std::vector<int> features)
+{
+  std::sort(features.begin(), features.end());
+  std::vector<int> best = features;
+  double shortest = std::numeric_limits<double>::infinity();
+  do
+  {
+    double length = 0.0;
+    for (std::size_t i = 0; i + 1 < features.size(); ++i)
+      length += (barycentric[features[i]] - barycentric[features[i + 1]]).norm();
+    if (length < shortest - 1e-12)
+    {
+      shortest = length;
+      best = features;
+    }
+  } while (std::next_permutation(features.begin(), features.end()));
+  return best;
+}
+
+/// Splits the polygon (of polygon positions) holding chord (i, j) in two.
+void splitAlongChord(std::vector<std::vector<int>>& polygons, int i, int j)
+{
+  for (std::size_t p = 0; p < polygons.size(); ++p)
+  {
+    const std::vector<int> polygon = polygons[p];
+    const auto at = std::find(polygon.begin(), polygon.end(), i);
+    const auto to = std::find(polygon.begin(), polygon.end(), j);
+    if (at == polygon.end() || to == polygon.end())
+      continue;
+    const int n = static_cast<int>(polygon.size());
+    const int from = static_cast<int>(at - polygon.begin());
+    const int until = static_cast<int>(to - polygon.begin());
+    if ((from + 1) % n == until || (until + 1) % n == from)
+      return; // already a side of a piece
+    std::vector<int> first, second;
+    for (int k = from;; k = (k + 1) % n)
+    {
+      first.push_back(polygon[k]);
+      if (k == until)
+        break;
+    }
+    for (int k = until;; k = (k + 1) % n)
+    {
+      second.push_back(polygon[k]);
+      if (k == from)
+        break;
+    }
+    polygons[p] = std::move(first);
+    polygons.push_back(std::move(second));
+    return;
+  }
+}
+
+} // namespace
+
+void CuttableCollisionMesh::recordCutAlongEdge(const TriangleFeatures& f,
+  int i,
+  int j,
+  CollisionCutResult& result) const
+{
+  // The sides of the polygon between i and j along their edge (an edge
+  // point inserted between them splits the edge in two).
+  const int n = static_cast<int>(f.polygon.size());
+  const int edge = sharedEdge(f.edgeOf, f.cornerOf, i, j);
+  for (const int direction : { 1, n - 1 })
+  {
+    std::vector<std::array<int, 2>> sides;
+    bool along = true;
+    for (int k = i; k != j && along; k = (k + direction) % n)
+    {
+      const int next = (k + direction) % n;
+      along = onTriangleEdge(f.edgeOf, f.cornerOf, next, edge);
+      sides.push_back({ f.polygon[k], f.polygon[next] });
+    }
+    if (along)
+    {
+      result.cutEdges.insert(result.cutEdges.end(), sides.begin(), sides.end());
+      return;
+    }
+  }
 }
 
 void CuttableCollisionMesh::splitTriangle(const TriangleFeatures& f, CollisionCutResult& result)
 {
   const int n = static_cast<int>(f.polygon.size());
-  auto onEdge = [&f](int position, int k)
+  // The cut joins the features in the order it passes them: chords across
+  // the triangle split it, stretches along an edge only open it there.
+  std::vector<std::vector<int>> polygons(1);
+  for (int i = 0; i < n; ++i)
+    polygons[0].push_back(i);
+  const std::vector<int> chain = featureChain(f.barycentric, f.features);
+  bool inner = false;
+  for (std::size_t c = 0; c + 1 < chain.size(); ++c)
   {
-    return f.edgeOf[position] == k || f.cornerOf[position] == k ||
-           f.cornerOf[position] == (k + 1) % 3;
-  };
-  auto shareEdge = [&](int i, int j)
-  {
-    for (int k = 0; k < 3; ++k)
+    const int i = chain[c], j = chain[c + 1];
+    if (sharedEdge(f.edgeOf, f.cornerOf, i, j) >= 0)
     {
-      if (onEdge(i, k) && onEdge(j, k))
-      {
-        return true;
-      }
+      recordCutAlongEdge(f, i, j, result);
+      continue;
     }
-    return false;
-  };
-  // Choose the cut: the two features farthest apart, preferring a pair
-  // across the triangle to one along an edge.
-  int from = -1, to = -1;
-  double bestScore = -1.0;
-  for (std::size_t x = 0; x < f.features.size(); ++x)
-  {
-    for (std::size_t y = x + 1; y < f.features.size(); ++y)
-    {
-      const int i = f.features[x], j = f.features[y];
-      const double distance = (f.barycentric[i] - f.barycentric[j]).norm();
-      const double score = distance + (shareEdge(i, j) ? 0.0 : 10.0);
-      if (score > bestScore)
-      {
-        bestScore = score;
-        from = i;
-        to = j;
-      }
-    }
-  }
-  const bool inner = from >= 0 && !shareEdge(from, to);
-  if (from >= 0)
-  {
-    result.cutEdges.push_back({ f.polygon[from], f.polygon[to] });
+    result.cutEdges.push_back({ f.polygon[i], f.polygon[j] });
+    splitAlongChord(polygons, i, j);
+    inner = true;
   }
   if (n == 3 && !inner)
   {
@@ -444,30 +570,8 @@ void CuttableCollisionMesh::splitTriangle(const TriangleFeatures& f, CollisionCu
                 f.barycentric[i][2] * planar[2];
   }
   std::vector<std::array<int, 3>> pieces;
-  if (inner)
-  {
-    std::vector<int> first, second;
-    for (int i = from;; i = (i + 1) % n)
-    {
-      first.push_back(i);
-      if (i == to)
-        break;
-    }
-    for (int i = to;; i = (i + 1) % n)
-    {
-      second.push_back(i);
-      if (i == from)
-        break;
-    }
-    clipEars(points, first, pieces);
-    clipEars(points, second, pieces);
-  }
-  else
-  {
-    std::vector<int> all(n);
-    std::iota(all.begin(), all.end(), 0);
-    clipEars(points, all, pieces);
-  }
+  for (const std::vector<int>& polygon : polygons)
+    clipEars(points, polygon, pieces);
 
   CollisionTriangleSplit split;
   split.parent = f.triangle;

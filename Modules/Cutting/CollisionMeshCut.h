@@ -128,7 +128,12 @@ private:
     const std::unordered_map<std::uint64_t, Crossing>& crossings,
     double snapFraction,
     CollisionCutResult& result);
+  void keepNearestTipLinks(std::vector<TriangleFeatures>& reached) const;
   void splitTriangle(const TriangleFeatures& features, CollisionCutResult& result);
+  void recordCutAlongEdge(const TriangleFeatures& features,
+    int i,
+    int j,
+    CollisionCutResult& result) const;
   void openAlongCut(CollisionCutResult& result);
   void updateTips(const std::vector<int>& sweepFeatures,
     const std::vector<int>& reachedTips,

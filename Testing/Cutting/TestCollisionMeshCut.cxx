@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <string>
 
 using namespace thintissue;
 using namespace thintissue::cutting_test;
@@ -152,6 +154,34 @@ TEST(CollisionMeshCut, AProgressiveCutContinuesFromItsTip)
   EXPECT_EQ(pieceCount(steps), 2);
   EXPECT_EQ(pieceCount(whole), 2);
   EXPECT_EQ(steps.closedCutEdgeCount(), 0u);
+}
+
+// A knife drawn across in steps of any length, straight or slanted, through
+// vertex columns or between them, cuts the grid in two and nothing more.
+// Long steps put a tip, a crossing and a snapped corner in one triangle:
+// joining only two of them cut the third off, and a tip joined to a snapped
+// corner in a triangle the blade never crossed cut a triangle out (both
+// made 1-triangle fragments before).
+TEST(CollisionMeshCut, AKnifeDrawnInStepsOfAnyLengthCutsInTwo)
+{
+  for (const double step : { 0.05, 0.3, 0.6, 1.0, 1.7 })
+    for (const double offset : { 0.0, 0.17, 0.5, 0.93 })
+      for (const double angle : { 0.0, 0.3, 0.785, 1.1 })
+      {
+        CuttableCollisionMesh mesh = grid(8);
+        const Vector3 along(std::sin(angle), std::cos(angle), 0.0);
+        const Vector3 through(4.0 + offset, 4.0, 0.0);
+        const Vector3 up = Vector3::UnitZ();
+        for (double s = -8.0; s < 8.0; s += step)
+        {
+          const Vector3 a = through + s * along, b = through + (s + step) * along;
+          mesh.cut(Blade::sweptSegment(a - up, a + up, b - up, b + up), mesh.restPositions());
+        }
+        const std::string where = "step " + std::to_string(step) + ", offset " +
+                                  std::to_string(offset) + ", angle " + std::to_string(angle);
+        ASSERT_TRUE(collisionMeshIsValid(mesh)) << where;
+        EXPECT_EQ(pieceCount(mesh), 2) << where;
+      }
 }
 
 TEST(CollisionMeshCut, CutsThroughVerticesAndAlongEdges)
