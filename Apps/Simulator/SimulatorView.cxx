@@ -89,7 +89,6 @@ SimulatorView::SimulatorView(const TrainingScene& scene)
   Instrument->GetProperty()->SetSpecularPower(80.0);
   Renderer->AddActor(Instrument);
   addRoundFieldOfView();
-  update();
 }
 
 void SimulatorView::addKnee()
@@ -204,11 +203,10 @@ vtkRenderer* SimulatorView::overview()
   camera->SetPosition(-15.0, 125.0, 95.0);
   camera->SetViewUp(0.0, 0.0, 1.0);
   Overview->ResetCameraClippingRange();
-  update();
   return Overview;
 }
 
-void SimulatorView::update()
+void SimulatorView::update(const SceneSnapshot& snapshot)
 {
   if (Renderer->GetRenderWindow() != nullptr)
   {
@@ -219,9 +217,9 @@ void SimulatorView::update()
       placeRing(aspect);
     }
   }
-  if (Scene.topologyVersion() != TopologyVersion)
+  if (snapshot.topology && snapshot.topology->version != TopologyVersion)
   {
-    rebuildTissue();
+    rebuildTissue(*snapshot.topology);
   }
   // The tissue where the scene put it (with its wrinkles). Normals: the
   // rest normals the mesh carries (interpolated from the model's, smooth)
@@ -229,22 +227,30 @@ void SimulatorView::update()
   // rest; computed normals alone streak along the binding's re-meshed
   // slivers, and their change still shows the wrinkles and the bending.
   TriangleMesh& moved = Shading;
-  moved.positions = Scene.visualPositions();
-  moved.computeVertexNormals();
-  vtkPoints* points = Tissue->GetPoints();
-  vtkDataArray* normals = Tissue->GetPointData()->GetNormals();
-  for (std::size_t i = 0; i < moved.positions.size(); ++i)
+  if (snapshot.visualPositions.size() == RestNormals.size())
   {
-    points->SetPoint(static_cast<vtkIdType>(i), moved.positions[i].data());
-    const Vector3 normal =
-      (RestNormals[i] + moved.normals[i] - ComputedRestNormals[i]).normalized();
-    normals->SetTuple(static_cast<vtkIdType>(i), normal.data());
+    moved.positions.assign(snapshot.visualPositions.begin(), snapshot.visualPositions.end());
+    moved.computeVertexNormals();
+    vtkPoints* points = Tissue->GetPoints();
+    vtkDataArray* normals = Tissue->GetPointData()->GetNormals();
+    for (std::size_t i = 0; i < moved.positions.size(); ++i)
+    {
+      points->SetPoint(static_cast<vtkIdType>(i), moved.positions[i].data());
+      const Vector3 normal =
+        (RestNormals[i] + moved.normals[i] - ComputedRestNormals[i]).normalized();
+      normals->SetTuple(static_cast<vtkIdType>(i), normal.data());
+    }
+    points->Modified();
+    normals->Modified();
+    Tissue->Modified();
+    CutSurface->Modified();
   }
-  points->Modified();
-  normals->Modified();
-  Tissue->Modified();
-  CutSurface->Modified();
-  const RigidPose& tool = Scene.instrumentPose();
+  placeInstrumentAndCamera(snapshot);
+}
+
+void SimulatorView::placeInstrumentAndCamera(const SceneSnapshot& snapshot)
+{
+  const RigidPose& tool = snapshot.instrument;
   vtkNew<vtkMatrix4x4> matrix;
   for (int r = 0; r < 3; ++r)
   {
@@ -255,9 +261,9 @@ void SimulatorView::update()
     matrix->SetElement(r, 3, tool.translation[r]);
   }
   Instrument->SetUserMatrix(matrix);
-  showJaws();
+  showJaws(snapshot.jawOpening);
   // The arthroscope: eye at the scope tip, VTK's headlight there too.
-  const ArthroscopeView view = arthroscopeView(Scene.scopePose(), Scene.scenario().viewingAngle);
+  const ArthroscopeView view = arthroscopeView(snapshot.scope, Scene.scenario().viewingAngle);
   vtkCamera* camera = Renderer->GetActiveCamera();
   camera->SetPosition(view.eye.data());
   camera->SetFocalPoint(view.focalPoint.data());
@@ -266,7 +272,7 @@ void SimulatorView::update()
   camera->SetClippingRange(0.5, 300.0);
   if (ScopeShaft)
   {
-    const RigidPose& scope = Scene.scopePose();
+    const RigidPose& scope = snapshot.scope;
     const Vector3 handle = scope * Vector3(0.0, 0.0, 60.0);
     ScopeShaft->GetPoints()->SetPoint(0, scope.translation.data());
     ScopeShaft->GetPoints()->SetPoint(1, handle.data());
@@ -275,33 +281,33 @@ void SimulatorView::update()
   }
 }
 
-void SimulatorView::showJaws()
+void SimulatorView::showJaws(double jawOpening)
 {
   // The punch's and the scissors' jaws drawn as open as the scene has them
   // (remade only when they moved by a twentieth of their travel).
   const SurgicalInstrumentType type = Scene.instrumentModel().type;
   const bool jaws =
     type == SurgicalInstrumentType::Punch || type == SurgicalInstrumentType::Scissors;
-  if (!jaws || std::abs(Scene.jawOpening() - JawsShown) < 0.05)
+  if (!jaws || std::abs(jawOpening - JawsShown) < 0.05)
   {
     return;
   }
   SurgicalInstrumentParameters parameters = Scene.instrumentModel().parameters;
-  parameters.jawOpeningDegrees *= Scene.jawOpening();
+  parameters.jawOpeningDegrees *= jawOpening;
   auto* mapper = vtkPolyDataMapper::SafeDownCast(Instrument->GetMapper());
   mapper->SetInputData(withNormals(makeSurgicalInstrument(parameters).visual));
-  JawsShown = Scene.jawOpening();
+  JawsShown = jawOpening;
 }
 
-void SimulatorView::rebuildTissue()
+void SimulatorView::rebuildTissue(const SceneTopology& topology)
 {
   // After a cut: the visual mesh's vertices, its triangles still in the
   // tissue (removed pieces are not drawn), split into the outer surface and
   // the cut surfaces, both on one point set and one normal array.
-  const TriangleMesh& mesh = Scene.visualMesh();
-  const std::vector<char> active = Scene.activeVisualTriangles();
+  const TriangleMesh& mesh = topology.mesh;
+  const std::vector<char>& active = topology.active;
   const std::vector<VisualMaterial>* materials =
-    Scene.cutter() ? &Scene.cutter()->visual().triangleMaterials() : nullptr;
+    topology.materials.empty() ? nullptr : &topology.materials;
   const auto count = static_cast<vtkIdType>(mesh.vertexCount());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -349,7 +355,7 @@ void SimulatorView::rebuildTissue()
       RestNormals[v] = ComputedRestNormals[v];
     }
   }
-  TopologyVersion = Scene.topologyVersion();
+  TopologyVersion = topology.version;
 }
 
 void SimulatorView::writePicture(vtkRenderWindow* window, const std::string& path)

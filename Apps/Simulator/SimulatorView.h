@@ -2,7 +2,9 @@
 // ligaments), the tissue's visual surface as the scene moves it (wrinkles
 // included), the instrument, and the arthroscope's view (30 degree scope,
 // round field of view, headlight at the scope tip). Only the GUI thread
-// touches it.
+// touches it: what moves comes from SceneSnapshots (the physics thread's,
+// or TrainingScene::snapshot in lock-step); of the scene itself it reads
+// only what never changes once built (scenario, knee, instrument model).
 #ifndef SimulatorView_h
 #define SimulatorView_h
 
@@ -23,21 +25,23 @@ namespace thintissue
 class SimulatorView
 {
 public:
+  /// Draws nothing that moves until the first update().
   explicit SimulatorView(const TrainingScene& scene);
   vtkRenderer* renderer() const { return Renderer; }
   /// The overview: the same knee, tissue and instrument seen from outside
   /// the joint (femur hidden), with the arthroscope's shaft; its camera is
-  /// fixed. Made on first call.
+  /// fixed. Made on first call (before an update()).
   vtkRenderer* overview();
   /// Follows the scene: tissue points and normals, instrument, camera.
-  void update();
+  void update(const SceneSnapshot& snapshot);
   /// Writes the window's picture (PNG).
   static void writePicture(vtkRenderWindow* window, const std::string& path);
 
 private:
   void addKnee();
-  void rebuildTissue();
-  void showJaws();
+  void rebuildTissue(const SceneTopology& topology);
+  void showJaws(double jawOpening);
+  void placeInstrumentAndCamera(const SceneSnapshot& snapshot);
   void addRoundFieldOfView();
   void placeRing(double aspect);
   static constexpr int RingSegments = 96;

@@ -1,5 +1,8 @@
 #include "SimulatorWindow.h"
 
+#include "MouseHapticDevice.h"
+#include "SettingsPanel.h"
+
 #include <QComboBox>
 #include <QDateTime>
 #include <QDir>
@@ -9,6 +12,7 @@
 #include <QMessageBox>
 #include <QPushButton>
 #include <QStatusBar>
+#include <QTabWidget>
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
 
@@ -20,15 +24,11 @@
 namespace thintissue
 {
 
-SimulatorWindow::SimulatorWindow(TrainingScene& scene,
-  MouseHapticDevice* scope,
-  MouseHapticDevice* instrument)
+SimulatorWindow::SimulatorWindow(TrainingScene& scene, WindowDevices devices)
   : Scene(&scene)
-  , FreePlay(scope != nullptr && instrument != nullptr)
+  , Devices(std::move(devices))
+  , FreePlay(Devices.mouseScope != nullptr && Devices.mouseInstrument != nullptr)
 {
-  const QString devices = FreePlay ? "mouse and keyboard (Shift: arthroscope; left drag across, "
-                                     "right drag in and out, [ ] roll)"
-                                   : "the recording";
   Widget = new QVTKOpenGLNativeWidget(this);
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   window->SetNumberOfLayers(2);
@@ -37,12 +37,30 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene,
   if (FreePlay)
   {
     vtkNew<vtkHapticInteractorStyle> style;
-    style->SetExternalMouseDevices(scope, instrument);
+    style->SetExternalMouseDevices(Devices.mouseScope, Devices.mouseInstrument);
     style->DriveCameraOff();
     Widget->interactor()->SetInteractorStyle(style);
   }
+  auto* dock = new QDockWidget("Session", this);
+  dock->setWidget(makePanel());
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  resize(1280, 720);
 
-  auto* panel = new QWidget(this);
+  connect(&Frames, &QTimer::timeout, this, &SimulatorWindow::advance);
+  showScene();
+  startLoop();
+  Frames.start(16);
+}
+
+SimulatorWindow::~SimulatorWindow()
+{
+  stopLoop();
+}
+
+QWidget* SimulatorWindow::makePanel()
+{
+  auto* tabs = new QTabWidget(this);
+  auto* panel = new QWidget(tabs);
   auto* layout = new QVBoxLayout(panel);
   Scenarios = new QComboBox(panel);
   Scenarios->setEnabled(false);
@@ -70,18 +88,53 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene,
   ScenarioText = new QLabel(panel);
   ScenarioText->setWordWrap(true);
   layout->addWidget(ScenarioText);
-  layout->addWidget(new QLabel("Devices: " + devices, panel));
+  DeviceText = new QLabel(panel);
+  DeviceText->setWordWrap(true);
+  layout->addWidget(DeviceText);
   Metrics = new QLabel(panel);
   layout->addWidget(Metrics);
   layout->addStretch();
-  auto* dock = new QDockWidget("Session", this);
-  dock->setWidget(panel);
-  addDockWidget(Qt::RightDockWidgetArea, dock);
-  resize(1280, 720);
+  tabs->addTab(panel, "Session");
+  Settings = new SettingsPanel(
+    [this](const ScenarioDescription& changed) { return startScenario(changed); }, tabs);
+  tabs->addTab(Settings, "Settings");
+  return tabs;
+}
 
-  connect(&Frames, &QTimer::timeout, this, &SimulatorWindow::advance);
-  showScene();
-  Frames.start(16);
+void SimulatorWindow::startLoop()
+{
+  RealTimeLoopSettings settings;
+  settings.servo = Devices.startServo ? LoopServo::External : LoopServo::Thread;
+  // A replay stops at the scenario's end; live devices play on.
+  const bool replay = !FreePlay && !Devices.startServo;
+  if (replay)
+  {
+    settings.endTime = Scene->scenario().duration;
+  }
+  Loop = std::make_unique<RealTimeLoop>(*Scene, settings);
+  Loop->start();
+  DeviceError.clear();
+  if (Devices.startServo)
+  {
+    try
+    {
+      Devices.startServo(Scene->servo());
+    }
+    catch (const std::exception& error)
+    {
+      // Shown with the device status; the scene runs on, without forces.
+      DeviceError = QString::fromStdString(error.what());
+    }
+  }
+}
+
+void SimulatorWindow::stopLoop()
+{
+  if (Devices.stopServo)
+  {
+    Devices.stopServo();
+  }
+  Loop.reset();
 }
 
 void SimulatorWindow::showScene()
@@ -99,6 +152,9 @@ void SimulatorWindow::showScene()
   overview->SetViewport(0.74, 0.0, 1.0, 0.34);
   overview->SetLayer(1);
   window->AddRenderer(overview);
+  // Before the loop runs, the GUI may read the scene itself.
+  Scene->snapshot(Shown);
+  View->update(Shown);
   const ScenarioDescription& s = Scene->scenario();
   Instruments->setCurrentIndex(
     Instruments->findData(QString::fromStdString(instrumentTypeName(s.instrument))));
@@ -106,7 +162,7 @@ void SimulatorWindow::showScene()
   ScenarioText->setText(
     QString("<b>%1</b><br>%2")
       .arg(QString::fromStdString(s.name), QString::fromStdString(s.description)));
-  Clock.restart();
+  Settings->show(s);
 }
 
 void SimulatorWindow::setScenarios(const std::string& directory, SceneFactory factory)
@@ -151,55 +207,111 @@ bool SimulatorWindow::screenshot(const std::string& path)
 
 bool SimulatorWindow::loadScenario(const std::string& path, const std::string& instrument)
 {
+  try
+  {
+    ScenarioDescription scenario = readScenario(path);
+    if (!instrument.empty())
+      scenario.instrument = parseSurgicalInstrumentType(instrument);
+    return startScenario(scenario);
+  }
+  catch (const std::exception& error)
+  {
+    return failToLoad(error.what());
+  }
+}
+
+bool SimulatorWindow::startScenario(const ScenarioDescription& scenario)
+{
   if (!Factory)
   {
     return false;
   }
+  // The devices serve one scene at a time: the running one pauses while
+  // the next is built, and goes on if it cannot be.
+  stopLoop();
   try
   {
-    std::unique_ptr<TrainingScene> next = Factory(path, instrument);
+    std::unique_ptr<TrainingScene> next = Factory(scenario);
     Owned.swap(next); // the old one (if owned) goes after the view is rebuilt
     Scene = Owned.get();
     showScene();
+    startLoop();
     return true;
   }
   catch (const std::exception& error)
   {
-    // Not modal: the running scenario goes on behind the message.
-    auto* box = new QMessageBox(QMessageBox::Warning,
-      "Scenario not loaded",
-      QString::fromStdString(error.what()),
-      QMessageBox::Ok,
-      this);
-    box->setAttribute(Qt::WA_DeleteOnClose);
-    box->show();
-    const int current = Scenarios->findData(
-      QFileInfo(QString::fromStdString(Scene->scenario().source)).absoluteFilePath());
-    Scenarios->setCurrentIndex(current);
-    Instruments->setCurrentIndex(Instruments->findData(
-      QString::fromStdString(instrumentTypeName(Scene->scenario().instrument))));
-    return false;
+    startLoop();
+    return failToLoad(error.what());
   }
+}
+
+bool SimulatorWindow::failToLoad(const std::string& message)
+{
+  // Not modal: the running scenario goes on behind the message.
+  auto* box = new QMessageBox(QMessageBox::Warning,
+    "Scenario not loaded",
+    QString::fromStdString(message),
+    QMessageBox::Ok,
+    this);
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->show();
+  const int current = Scenarios->findData(
+    QFileInfo(QString::fromStdString(Scene->scenario().source)).absoluteFilePath());
+  Scenarios->setCurrentIndex(current);
+  Instruments->setCurrentIndex(Instruments->findData(
+    QString::fromStdString(instrumentTypeName(Scene->scenario().instrument))));
+  return false;
 }
 
 void SimulatorWindow::advance()
 {
-  const double elapsed = Clock.elapsed() / 1000.0;
-  const double now = FreePlay ? elapsed : std::min(elapsed, Scene->scenario().duration);
-  if (!Scene->runTo(now))
+  Shown = Loop->latest();
+  if (Loop->finished() && !Loop->error().empty())
   {
     Frames.stop();
-    QMessageBox::warning(this, "Simulation stopped", QString::fromStdString(Scene->lastError()));
-    return;
+    QMessageBox::warning(this, "Simulation stopped", QString::fromStdString(Loop->error()));
   }
-  View->update();
+  View->update(Shown);
   Widget->renderWindow()->Render();
   showMetrics();
+  showDevices();
+}
+
+QString SimulatorWindow::deviceStatus() const
+{
+  QString text = "<b>Devices:</b> " + QString::fromStdString(Devices.description);
+  const char* names[2] = { "arthroscope", "instrument" };
+  for (int slot = 0; slot < 2; ++slot)
+  {
+    const SceneDeviceStatus& d = Shown.devices[slot];
+    text += QString("<br>%1: %2, buttons %3, force %4 N")
+              .arg(names[slot])
+              .arg(d.calibrated ? "calibrated" : "<b>not calibrated</b>")
+              .arg(d.buttons)
+              .arg(d.force.norm(), 0, 'f', 2);
+  }
+  if (!DeviceError.isEmpty())
+  {
+    text += "<br><b>" + DeviceError.toHtmlEscaped() + "</b>";
+  }
+  if (Devices.problems)
+  {
+    for (const std::string& problem : Devices.problems())
+    {
+      text += "<br><b>" + QString::fromStdString(problem).toHtmlEscaped() + "</b>";
+    }
+  }
+  return text;
+}
+
+void SimulatorWindow::showDevices()
+{
+  DeviceText->setText(deviceStatus());
 }
 
 void SimulatorWindow::showMetrics()
 {
-  const SceneMetrics& m = Scene->metrics();
+  const SceneMetrics& m = Shown.metrics;
   Metrics->setText(QString("time %1 s<br>instrument path %2 mm<br>camera path %3 mm<br>"
                            "peak force %4 N<br>cartilage contacts %5 steps<br>"
                            "cuts and bites %7, removed %8 mm&sup3;<br>%6")
@@ -208,7 +320,7 @@ void SimulatorWindow::showMetrics()
                      .arg(m.cameraPathLength, 0, 'f', 1)
                      .arg(m.peakForce, 0, 'f', 2)
                      .arg(m.cartilageContactSteps)
-                     .arg(Scene->wrinkling() ? "<b>wrinkling</b>" : "")
+                     .arg(Shown.wrinkling ? "<b>wrinkling</b>" : "")
                      .arg(m.operations)
                      .arg(m.removedVolume, 0, 'f', 1));
 }

@@ -6,7 +6,9 @@
 //
 //   ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]
 //                       [--snapshots T1,T2,...] [--output DIR]
-//                       [--compare DIR] [--size WxH] [--devices replay|mouse]
+//                       [--compare DIR] [--size WxH]
+//                       [--devices replay|mouse|touch|auto] [--hd-library PATH]
+//                       [--scope-device NAME] [--instrument-device NAME]
 //                       [--record R.json] [--tissue FILE]
 //
 // Defaults: the shipped meniscus examination and its recording; without a
@@ -14,7 +16,13 @@
 // --devices mouse the mouse and keyboard drive the instrument (with Shift
 // the arthroscope): left drag across, right drag in and out, [ ] roll;
 // --record writes what they did as a recording (up to 5 minutes) that
-// --replay plays back bit for bit. --tissue FILE puts your own tissue in the
+// --replay plays back bit for bit (in lock-step: the window's threads take
+// the poses as they come, so the replay is the run as recorded, not as
+// the window's physics thread happened to sample it). --devices touch: two
+// 3D Systems Touch devices named "Arthroscope" and "Instrument" (or
+// --scope-device / --instrument-device) through the OpenHaptics library
+// (libHD.so, or --hd-library), in the window; --devices auto: the Touch
+// devices when they open, else the mouse. --tissue FILE puts your own tissue in the
 // scenario: a bundle made by ThinTissuePrepare (.ttbundle) or a mesh file
 // prepared as it loads.
 #include "SimulatorView.h"
@@ -22,6 +30,7 @@
 #include "VirtualDisplay.h"
 
 #include "MouseHapticDevice.h"
+#include "OpenHapticsSystem.h"
 #include "ScriptedHapticDevice.h"
 #include "ThinTissueError.h"
 #include "TrainingScene.h"
@@ -61,7 +70,12 @@ struct Options
   std::string compare;
   int width = 640;
   int height = 480;
-  bool mouse = false;
+  /// replay, mouse, touch (two Touch devices) or auto (Touch if there, else
+  /// the mouse).
+  std::string devices = "replay";
+  std::string hdLibrary = "libHD.so";
+  std::string scopeDevice = "Arthroscope";
+  std::string instrumentDevice = "Instrument";
   std::string record;
   std::string tissue;
 };
@@ -71,7 +85,9 @@ void printUsage()
   std::cerr
     << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
        "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
-       "                           [--size WxH] [--devices replay|mouse] [--record R.json]\n"
+       "                           [--size WxH] [--devices replay|mouse|touch|auto]\n"
+       "                           [--hd-library PATH] [--scope-device NAME]\n"
+       "                           [--instrument-device NAME] [--record R.json]\n"
        "                           [--tissue BUNDLE.ttbundle|MESH]\n";
 }
 
@@ -107,6 +123,11 @@ bool parseTimes(const std::string& text, std::vector<double>& times)
   return !times.empty();
 }
 
+bool validDevices(const std::string& devices)
+{
+  return devices == "replay" || devices == "mouse" || devices == "touch" || devices == "auto";
+}
+
 bool parseArguments(int argc, char* argv[], Options& o)
 {
   for (int i = 1; i < argc; ++i)
@@ -132,10 +153,21 @@ bool parseArguments(int argc, char* argv[], Options& o)
     {
       o.output = argv[++i];
     }
-    else if (a == "--devices" && hasValue &&
-             (std::string(argv[i + 1]) == "mouse" || std::string(argv[i + 1]) == "replay"))
+    else if (a == "--devices" && hasValue && validDevices(argv[i + 1]))
     {
-      o.mouse = std::string(argv[++i]) == "mouse";
+      o.devices = argv[++i];
+    }
+    else if (a == "--hd-library" && hasValue)
+    {
+      o.hdLibrary = argv[++i];
+    }
+    else if (a == "--scope-device" && hasValue)
+    {
+      o.scopeDevice = argv[++i];
+    }
+    else if (a == "--instrument-device" && hasValue)
+    {
+      o.instrumentDevice = argv[++i];
     }
     else if (a == "--record" && hasValue)
     {
@@ -206,6 +238,7 @@ int runOffscreen(TrainingScene& scene, const Options& o)
   window->SetSize(o.width, o.height);
   window->AddRenderer(view.renderer());
   std::vector<double> steps, frames;
+  SceneSnapshot snapshot;
   bool matches = true;
   std::vector<double> times = o.snapshots;
   times.push_back(scene.scenario().duration);
@@ -227,7 +260,8 @@ int runOffscreen(TrainingScene& scene, const Options& o)
       break; // the end of the run: metrics only
     }
     const auto start = std::chrono::steady_clock::now();
-    view.update();
+    scene.snapshot(snapshot);
+    view.update(snapshot);
     window->Render();
     frames.push_back(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -255,64 +289,119 @@ int runOffscreen(TrainingScene& scene, const Options& o)
   return matches ? 0 : 1;
 }
 
-/// The session's two styluses: the recording's, or the mouse's. With
-/// --record they are wrapped in recorders (and only then: a recorder hands
-/// the run the orientation as it stores it, so that its replay is exact).
+/// The session's two styluses: the recording's, the mouse's or two Touch
+/// devices (OpenHaptics, loaded at run time). With --record they are
+/// wrapped in recorders (and only then: a recorder hands the run the
+/// orientation as it stores it, so that its replay is exact).
 class SessionDevices
 {
 public:
   SessionDevices(const SceneRecording& recording, const Options& options)
-    : Mouse(options.mouse)
-    , Recording(!options.record.empty())
-    , ScriptedScope(recording.scope)
+    : ScriptedScope(recording.scope)
     , ScriptedInstrument(recording.instrument)
-    , ScopeRecorder(live(ScriptedScope, MouseScope), Recording ? FiveMinutes : 0)
-    , InstrumentRecorder(live(ScriptedInstrument, MouseInstrument), Recording ? FiveMinutes : 0)
   {
+    Scope = &ScriptedScope;
+    Instrument = &ScriptedInstrument;
+    Description = "the recording " + options.replay;
+    if (options.devices == "touch" || options.devices == "auto")
+    {
+      openTouch(options);
+    }
+    if (options.devices == "mouse" || (options.devices == "auto" && !Touch))
+    {
+      Scope = &MouseScope;
+      Instrument = &MouseInstrument;
+      Description = "mouse and keyboard (Shift: arthroscope; left drag across, right drag in "
+                    "and out, [ ] roll)" +
+                    (TouchProblem.empty() ? "" : "; no Touch: " + TouchProblem);
+    }
+    if (!options.record.empty())
+    {
+      ScopeRecorder = std::make_unique<RecordingHapticDevice>(*Scope, FiveMinutes);
+      InstrumentRecorder = std::make_unique<RecordingHapticDevice>(*Instrument, FiveMinutes);
+      Scope = ScopeRecorder.get();
+      Instrument = InstrumentRecorder.get();
+    }
   }
-  HapticDevice& scope() { return Recording ? ScopeRecorder : live(ScriptedScope, MouseScope); }
-  HapticDevice& instrument()
+  HapticDevice& scope() { return *Scope; }
+  HapticDevice& instrument() { return *Instrument; }
+  bool touch() const { return Touch != nullptr; }
+  bool mouse() const { return !Touch && Description.rfind("mouse", 0) == 0; }
+  /// What the window shows and controls.
+  WindowDevices forWindow()
   {
-    return Recording ? InstrumentRecorder : live(ScriptedInstrument, MouseInstrument);
+    WindowDevices w;
+    w.description = Description;
+    if (mouse())
+    {
+      w.mouseScope = &MouseScope;
+      w.mouseInstrument = &MouseInstrument;
+    }
+    if (Touch)
+    {
+      OpenHapticsSystem* touch = Touch.get();
+      w.startServo = [touch](HapticServo& servo) { touch->start(servo); };
+      w.stopServo = [touch] { touch->stop(); };
+      w.problems = [touch] { return touch->errors(); };
+    }
+    return w;
   }
-  /// For the window's mouse and keyboard; null when replaying.
-  MouseHapticDevice* mouseScope() { return Mouse ? &MouseScope : nullptr; }
-  MouseHapticDevice* mouseInstrument() { return Mouse ? &MouseInstrument : nullptr; }
+  const std::string& description() const { return Description; }
   SceneRecording recorded(const std::string& scenario) const
   {
     return SceneRecording{ std::filesystem::absolute(scenario).string(),
       0,
-      ScopeRecorder.trajectory(),
-      InstrumentRecorder.trajectory() };
+      ScopeRecorder->trajectory(),
+      InstrumentRecorder->trajectory() };
   }
 
 private:
   static constexpr std::size_t FiveMinutes = 300000; // samples at 1 kHz
-  HapticDevice& live(ScriptedHapticDevice& scripted, MouseHapticDevice& mouse)
+
+  /// Two Touch devices by name; with "auto" a failure leaves the mouse.
+  void openTouch(const Options& options)
   {
-    return Mouse ? static_cast<HapticDevice&>(mouse) : scripted;
+    try
+    {
+      OpenHapticsSettings settings;
+      settings.library = options.hdLibrary;
+      settings.deviceNames = { options.scopeDevice, options.instrumentDevice };
+      Touch = std::make_unique<OpenHapticsSystem>(settings);
+      Scope = &Touch->device(0);
+      Instrument = &Touch->device(1);
+      Description = "Touch '" + options.scopeDevice + "' (arthroscope) and '" +
+                    options.instrumentDevice + "' (instrument)";
+    }
+    catch (const HapticDeviceError& error)
+    {
+      if (options.devices == "touch")
+        throw;
+      TouchProblem = error.what();
+    }
   }
 
-  bool Mouse;
-  bool Recording;
   ScriptedHapticDevice ScriptedScope;
   ScriptedHapticDevice ScriptedInstrument;
   MouseHapticDevice MouseScope;
   MouseHapticDevice MouseInstrument;
-  RecordingHapticDevice ScopeRecorder;
-  RecordingHapticDevice InstrumentRecorder;
+  std::unique_ptr<OpenHapticsSystem> Touch;
+  std::unique_ptr<RecordingHapticDevice> ScopeRecorder;
+  std::unique_ptr<RecordingHapticDevice> InstrumentRecorder;
+  HapticDevice* Scope = nullptr;
+  HapticDevice* Instrument = nullptr;
+  std::string Description;
+  std::string TouchProblem;
 };
 
 int runWindow(TrainingScene& scene,
-  MouseHapticDevice* scope,
-  MouseHapticDevice* instrument,
+  SessionDevices& devices,
   const SimulatorWindow::SceneFactory& factory,
   int argc,
   char* argv[])
 {
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication application(argc, argv);
-  SimulatorWindow window(scene, scope, instrument);
+  SimulatorWindow window(scene, devices.forWindow());
   window.setScenarios(std::string(THINTISSUE_DATA_DIR) + "/Scenarios", factory);
   window.show();
   return application.exec();
@@ -341,22 +430,19 @@ int main(int argc, char* argv[])
       useTissueFile(scenario, options.tissue);
     }
     SessionDevices devices(recording, options);
+    if (options.offscreen && devices.touch())
+    {
+      std::cerr << "ThinTissueSimulator: Touch devices need the window (not --offscreen)\n";
+      return 2;
+    }
     TrainingScene scene(scenario, devices.scope(), devices.instrument());
     std::cout << "ThinTissue simulator: " << scenario.name << " (" << scenario.source << "), "
-              << (options.mouse ? "mouse and keyboard" : "recording " + options.replay) << "\n";
+              << devices.description() << "\n";
     // Another scenario, chosen in the window, with the same devices.
-    const SimulatorWindow::SceneFactory factory =
-      [&](const std::string& path, const std::string& tool)
-    {
-      ScenarioDescription next = readScenario(path);
-      if (!tool.empty())
-        next.instrument = parseSurgicalInstrumentType(tool);
-      return std::make_unique<TrainingScene>(next, devices.scope(), devices.instrument());
-    };
-    const int status =
-      options.offscreen
-        ? runOffscreen(scene, options)
-        : runWindow(scene, devices.mouseScope(), devices.mouseInstrument(), factory, argc, argv);
+    const SimulatorWindow::SceneFactory factory = [&](const ScenarioDescription& next)
+    { return std::make_unique<TrainingScene>(next, devices.scope(), devices.instrument()); };
+    const int status = options.offscreen ? runOffscreen(scene, options)
+                                         : runWindow(scene, devices, factory, argc, argv);
     if (!options.record.empty())
     {
       writeSceneRecording(options.record, devices.recorded(scenario.source));

@@ -29,12 +29,13 @@ ServoThread::~ServoThread()
   stop();
 }
 
-void ServoThread::start()
+void ServoThread::start(double clockStart)
 {
   if (Running.exchange(true))
   {
     return;
   }
+  ClockStart = clockStart;
   Periods.clear();
   Durations.clear();
   Start = std::chrono::steady_clock::now();
@@ -57,7 +58,7 @@ void ServoThread::stop()
 
 double ServoThread::now() const
 {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - Start).count();
+  return ClockStart + std::chrono::duration<double>(std::chrono::steady_clock::now() - Start).count();
 }
 
 void ServoThread::run()
@@ -72,7 +73,7 @@ void ServoThread::run()
     next += period;
     std::this_thread::sleep_until(next);
     const auto woke = Clock::now();
-    Servo.tick(std::chrono::duration<double>(woke - Start).count());
+    Servo.tick(ClockStart + std::chrono::duration<double>(woke - Start).count());
     const auto done = Clock::now();
     if (Periods.size() < Periods.capacity())
     {

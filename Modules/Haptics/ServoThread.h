@@ -27,7 +27,9 @@ public:
   ServoThread(const ServoThread&) = delete;
   ServoThread& operator=(const ServoThread&) = delete;
 
-  void start();
+  /// Starts ticking; the servo's clock reads `clockStart` seconds at the
+  /// start (a scene resumed where it stopped).
+  void start(double clockStart = 0.0);
   /// Joins the thread; safe to call twice.
   void stop();
   bool running() const { return Running.load(); }
@@ -51,6 +53,7 @@ private:
   std::vector<double> Periods;
   std::vector<double> Durations;
   std::chrono::steady_clock::time_point Start;
+  double ClockStart = 0.0;
 };
 
 } // namespace thintissue

@@ -189,22 +189,8 @@ void readTissueSource(const ScenarioReader& r, ScenarioDescription& s)
   s.portalsFromTissueCentre = r.flag("portalsFromTissueCentre", s.portalsFromTissueCentre);
 }
 
-void readTissue(const ScenarioReader& r, ScenarioDescription& s)
+void readMaterial(const ScenarioReader& r, ScenarioDescription& s)
 {
-  readTissueSource(r, s);
-  s.tear = r.named(
-    "tissue.tear", "none", [](const std::string& n) { return meniscusTearTypeFromName(n); });
-  const std::string resolution = r.text("tissue.resolution", "examination");
-  if (resolution != "examination" && resolution != "default")
-  {
-    r.fail("tissue.resolution", "must be \"examination\" or \"default\"");
-  }
-  s.examinationResolution = resolution == "examination";
-  s.wrinkles = r.flag("tissue.wrinkles", s.tissueModel == "meniscus" && s.wrinkles);
-  if (s.wrinkles && s.tissueModel != "meniscus")
-  {
-    r.fail("tissue.wrinkles", "only the meniscus model carries monitor data for wrinkles");
-  }
   s.material.youngModulus = r.number("tissue.material.youngModulus", s.material.youngModulus);
   s.material.poissonRatio =
     r.number("tissue.material.poissonRatio", s.material.poissonRatio, false);
@@ -223,6 +209,71 @@ void readTissue(const ScenarioReader& r, ScenarioDescription& s)
   {
     r.fail("tissue.material", e.what());
   }
+}
+
+void readWrinkleParameters(const ScenarioReader& r, ScenarioDescription& s)
+{
+  WrinkleParameters& w = s.wrinkle;
+  w.frequency = r.number("tissue.wrinkle.frequency", w.frequency);
+  w.scale = r.number("tissue.wrinkle.scale", w.scale, false);
+  w.magnitudeBound = r.number("tissue.wrinkle.magnitudeBound", w.magnitudeBound, false);
+  const double window = r.number("tissue.wrinkle.windowSize", w.windowSize);
+  if (window != std::floor(window) || window < 2.0 || window > 10000.0)
+  {
+    r.fail("tissue.wrinkle.windowSize", "must be a whole number of monitor points, at least 2");
+  }
+  w.windowSize = static_cast<int>(window);
+  try
+  {
+    checkWrinkleParameters(w);
+  }
+  catch (const InvalidInputError& e)
+  {
+    r.fail("tissue.wrinkle", e.what());
+  }
+}
+
+void readCutting(const ScenarioReader& r, ScenarioDescription& s)
+{
+  const double rows = r.number("cutting.cutSurfaceRows", s.cutSurfaceRows, false);
+  if (rows != std::floor(rows) || rows < 0.0 || rows > 8.0)
+  {
+    r.fail("cutting.cutSurfaceRows", "must be a whole number from 0 to 8");
+  }
+  s.cutSurfaceRows = static_cast<int>(rows);
+  s.fragmentAreaFraction =
+    r.number("cutting.fragmentAreaFraction", s.fragmentAreaFraction, false);
+  if (s.fragmentAreaFraction < 0.0 || s.fragmentAreaFraction >= 1.0)
+  {
+    r.fail("cutting.fragmentAreaFraction", "must lie in [0, 1)");
+  }
+}
+
+/// What the settings panel may change too.
+void readSettings(const ScenarioReader& r, ScenarioDescription& s)
+{
+  readMaterial(r, s);
+  readWrinkleParameters(r, s);
+  readCutting(r, s);
+}
+
+void readTissue(const ScenarioReader& r, ScenarioDescription& s)
+{
+  readTissueSource(r, s);
+  s.tear = r.named(
+    "tissue.tear", "none", [](const std::string& n) { return meniscusTearTypeFromName(n); });
+  const std::string resolution = r.text("tissue.resolution", "examination");
+  if (resolution != "examination" && resolution != "default")
+  {
+    r.fail("tissue.resolution", "must be \"examination\" or \"default\"");
+  }
+  s.examinationResolution = resolution == "examination";
+  s.wrinkles = r.flag("tissue.wrinkles", s.tissueModel == "meniscus" && s.wrinkles);
+  if (s.wrinkles && s.tissueModel != "meniscus")
+  {
+    r.fail("tissue.wrinkles", "only the meniscus model carries monitor data for wrinkles");
+  }
+  readSettings(r, s);
 }
 
 } // namespace
@@ -275,6 +326,29 @@ ScenarioDescription parseScenario(const std::string& text, const std::string& so
   {
     r.fail("task.target.radius", "must not be negative");
   }
+  return s;
+}
+
+ScenarioDescription applyScenarioSettings(const ScenarioDescription& base,
+  const std::string& text,
+  const std::string& source)
+{
+  Json root;
+  try
+  {
+    root = Json::parse(text);
+  }
+  catch (const Json::parse_error& e)
+  {
+    throw InvalidInputError("settings '" + source + "': not JSON (" + e.what() + ")");
+  }
+  const ScenarioReader r(root, source);
+  if (!root.is_object())
+  {
+    r.fail("(top)", "must be a JSON object");
+  }
+  ScenarioDescription s = base;
+  readSettings(r, s);
   return s;
 }
 

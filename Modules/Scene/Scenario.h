@@ -10,6 +10,7 @@
 #include "MeniscusModel.h"
 #include "ScriptedHapticDevice.h"
 #include "SurgicalInstruments.h"
+#include "WrinkleGenerator.h"
 #include "ThinTissueSceneModule.h"
 
 #include <string>
@@ -59,6 +60,14 @@ struct ScenarioDescription
   bool examinationResolution = true;
   bool wrinkles = true;
   LinearMaterial material;
+  /// Wrinkle parameters (4.4; key tissue.wrinkle: frequency, scale,
+  /// magnitudeBound, windowSize).
+  WrinkleParameters wrinkle;
+  /// Cut surface (5.3.4; key cutting): rows of vertices between the two
+  /// sides, and the free pieces below this fraction of the tissue's
+  /// collision area removed whole.
+  int cutSurfaceRows = 1;
+  double fragmentAreaFraction = 0.0;
   /// Millimetres between the tibial and femoral cartilage.
   double jointGap = 10.0;
   SurgicalInstrumentType instrument = SurgicalInstrumentType::ProbeHook;
@@ -80,6 +89,14 @@ struct ScenarioDescription
 /// (or FileError for an unreadable file).
 THINTISSUESCENE_EXPORT ScenarioDescription readScenario(const std::string& path);
 THINTISSUESCENE_EXPORT ScenarioDescription parseScenario(const std::string& json,
+  const std::string& source);
+
+/// The settings a user may change while training (the window's settings
+/// panel): `json` holds any of the keys tissue.material.*, tissue.wrinkle.*
+/// and cutting.*, as in a scenario file; the rest comes from `base`.
+/// Validated as a scenario file is; messages name `source` and the key.
+THINTISSUESCENE_EXPORT ScenarioDescription applyScenarioSettings(const ScenarioDescription& base,
+  const std::string& json,
   const std::string& source);
 
 /// A recorded run (issue: record and replay): the scenario file (relative

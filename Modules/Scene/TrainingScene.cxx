@@ -61,8 +61,10 @@ TrainingScene::TrainingScene(const ScenarioDescription& scenario,
     std::vector<HapticSlot>{ HapticSlot{ &scope, portalOf(Scenario.scopePortal), false },
       HapticSlot{ &instrument, portalOf(Scenario.instrumentPortal), true } });
   Servo->tick(0.0);
-  Tool.setPose(Servo->latestToolState(1).pose);
-  ScopePose = Servo->latestToolState(0).pose;
+  InstrumentState = Servo->latestToolState(1);
+  ScopeState = Servo->latestToolState(0);
+  Tool.setPose(InstrumentState.pose);
+  ScopePose = ScopeState.pose;
 }
 
 TrainingScene::~TrainingScene() = default;
@@ -92,7 +94,8 @@ void TrainingScene::buildWrinkles(const HexahedralMesh& hexahedra, const Triangl
     Wrinkles = std::make_unique<WrinkleGenerator>(
       resampleMonitorCurves(wrinkleDataCurves(Tissue.monitorCurves), 0.16, Scenario.source),
       hexahedra,
-      surface);
+      surface,
+      Scenario.wrinkle);
   }
 }
 
@@ -108,6 +111,8 @@ void TrainingScene::buildCutting()
   }
   TissueCutterSettings settings;
   settings.freePieces = FreePieceHandling::HandOver;
+  settings.visual.cutSurfaceRows = Scenario.cutSurfaceRows;
+  settings.fragmentAreaFraction = Scenario.fragmentAreaFraction;
   Cutter =
     std::make_unique<TissueCutter>(*Tissue.binding, Tissue.model.simulation, Fem.get(), settings);
   Action = std::make_unique<InstrumentAction>(Instrument);
@@ -186,19 +191,30 @@ void TrainingScene::buildContacts()
 bool TrainingScene::step()
 {
   const double end = Metrics.time + Scenario.timeStep;
-  // The servo at 1 kHz up to the end of the step (lock-step).
-  while (ServoTime + 0.001 <= end + 1e-12)
+  if (Ticking == ServoTicking::LockStep)
   {
-    ServoTime += 0.001;
-    Servo->tick(ServoTime);
+    // The servo at 1 kHz up to the end of the step.
+    while (ServoTime + 0.001 <= end + 1e-12)
+    {
+      ServoTime += 0.001;
+      Servo->tick(ServoTime);
+    }
+  }
+  // Each slot's latest state taken once (copied: the servo may publish
+  // another while the step runs).
+  InstrumentState = Servo->latestToolState(1);
+  ScopeState = Servo->latestToolState(0);
+  if (Ticking == ServoTicking::Elsewhere)
+  {
+    ServoTime = InstrumentState.time; // the contact model's time, on the servo's clock
   }
   const RigidPose previousTool = Tool.pose();
   const RigidPose previousScope = ScopePose;
-  Tool.moveTo(Servo->latestToolState(1).pose, Scenario.timeStep);
-  ScopePose = Servo->latestToolState(0).pose;
+  Tool.moveTo(InstrumentState.pose, Scenario.timeStep);
+  ScopePose = ScopeState.pose;
   if (Action)
   {
-    operate(Servo->latestToolState(1));
+    operate(InstrumentState);
   }
   const SolverResult result = Contacts.step();
   if (!result.ok)
@@ -280,6 +296,49 @@ const std::vector<Vector3>& TrainingScene::visualPositions() const
     VisualStale = false;
   }
   return Visual;
+}
+
+std::shared_ptr<const SceneTopology> TrainingScene::currentTopology() const
+{
+  if (Topology && Topology->version == TopologyVersion)
+  {
+    return Topology;
+  }
+  // Made again only after a cut: the mesh's rest state, without texture.
+  auto topology = std::make_shared<SceneTopology>();
+  const TriangleMesh& mesh = visualMesh();
+  topology->version = TopologyVersion;
+  topology->mesh.name = mesh.name;
+  topology->mesh.positions = mesh.positions;
+  topology->mesh.triangles = mesh.triangles;
+  topology->mesh.normals = mesh.normals;
+  topology->active = activeVisualTriangles();
+  if (Cutter)
+  {
+    topology->materials = Cutter->visual().triangleMaterials();
+  }
+  Topology = std::move(topology);
+  return Topology;
+}
+
+void TrainingScene::snapshot(SceneSnapshot& out) const
+{
+  out.time = Metrics.time;
+  out.topology = currentTopology();
+  const std::vector<Vector3>& positions = visualPositions();
+  out.visualPositions.assign(positions.begin(), positions.end()); // no allocation once sized
+  out.instrument = Tool.pose();
+  out.scope = ScopePose;
+  out.jawOpening = JawOpening;
+  out.wrinkling = wrinkling();
+  out.metrics = Metrics;
+  const HapticToolState* states[2] = { &ScopeState, &InstrumentState };
+  for (int slot = 0; slot < 2; ++slot)
+  {
+    out.devices[slot].calibrated = states[slot]->stylus.calibrated;
+    out.devices[slot].buttons = states[slot]->stylus.buttons;
+    out.devices[slot].force = states[slot]->force;
+  }
 }
 
 bool TrainingScene::runTo(double seconds)

@@ -7,9 +7,12 @@
 //   -> contact forces -> FEM step -> local contact model published to the
 //   servo -> wrinkles -> visual surface -> metrics.
 //
-// This class runs in lock-step (no threads): step() ticks the servo at 1 ms
-// up to the step's end, then does the rest. With scripted devices a run is
-// deterministic: tests, benchmarks, replays and image baselines use it.
+// By default the scene runs in lock-step (no threads): step() ticks the
+// servo at 1 ms up to the step's end, then does the rest. With scripted
+// devices a run is deterministic: tests, benchmarks, replays and image
+// baselines use it. RealTimeLoop runs it on a physics thread instead, the
+// servo ticked on its own (ServoTicking::Elsewhere), and hands the GUI
+// SceneSnapshots.
 #ifndef TrainingScene_h
 #define TrainingScene_h
 
@@ -19,6 +22,7 @@
 #include "KneeModels.h"
 #include "Scenario.h"
 #include "ScenarioTissue.h"
+#include "SceneSnapshot.h"
 #include "ThinTissueSceneModule.h"
 #include "WrinkleGenerator.h"
 
@@ -29,24 +33,13 @@
 namespace thintissue
 {
 
-/// What a run measured (issue: metrics and assessment).
-struct SceneMetrics
+/// Who ticks the servo: the scene's step itself at 1 ms up to the step's
+/// end (lock-step: deterministic), or another thread (ServoThread, the
+/// OpenHaptics scheduler; the step then takes the servo's latest poses).
+enum class ServoTicking
 {
-  double time = 0.0;                 ///< s
-  double instrumentPathLength = 0.0; ///< mm, of the instrument tip
-  double cameraPathLength = 0.0;     ///< mm, of the arthroscope tip
-  int cartilageContactSteps = 0;     ///< steps the instrument touched cartilage
-  double peakForce = 0.0;            ///< N, on the instrument
-  int wrinklingSteps = 0;
-  int steps = 0;
-  /// Bites, strokes and shaver bites that changed the tissue, and the rest
-  /// volume they removed (mm^3).
-  int operations = 0;
-  double removedVolume = 0.0;
-  /// Of it, the pieces whose centre lies in the task's target region (and
-  /// the rest: tissue that should have stayed).
-  double removedInTarget = 0.0;
-  double removedOutsideTarget = 0.0;
+  LockStep,
+  Elsewhere
 };
 
 class THINTISSUESCENE_EXPORT TrainingScene
@@ -65,6 +58,15 @@ public:
   bool step();
   /// Steps until time() reaches `seconds`.
   bool runTo(double seconds);
+  /// Before the first step on another thread: who ticks the servo.
+  void setServoTicking(ServoTicking ticking) { Ticking = ticking; }
+  ServoTicking servoTicking() const { return Ticking; }
+  /// The servo clock's time of the last tool state the scene took (s).
+  double servoTime() const { return ServoTime; }
+  /// Copies what the GUI draws into `out` (reusing its buffers; the
+  /// topology is shared and made again only after a cut). Call on the
+  /// thread that steps the scene.
+  void snapshot(SceneSnapshot& out) const;
 
   double time() const { return Metrics.time; }
   const ScenarioDescription& scenario() const { return Scenario; }
@@ -109,6 +111,7 @@ private:
   void rebuildCollisionMesh();
   void operate(const HapticToolState& instrument);
   void updateMetrics(const RigidPose& previousTool, const RigidPose& previousScope);
+  std::shared_ptr<const SceneTopology> currentTopology() const;
 
   ScenarioDescription Scenario;
   ScenarioTissue Tissue;
@@ -131,6 +134,11 @@ private:
   mutable bool VisualStale = true;
   RigidPose ScopePose;
   double ServoTime = 0.0;
+  ServoTicking Ticking = ServoTicking::LockStep;
+  /// The tool states the last step took from the servo (slot 0: scope).
+  HapticToolState ScopeState;
+  HapticToolState InstrumentState;
+  mutable std::shared_ptr<const SceneTopology> Topology;
   int CartilageObstacle = -1;
   SceneMetrics Metrics;
   std::string LastError;
