@@ -70,6 +70,7 @@ THINTISSUE_BENCHMARK_SUITE(simulatorSuite,
          "shaver-removal",
          "sheet-cutting",
          "ligament-firmness",
+         "pcl-firmness",
          "cartilage-palpation" })
   {
     replayScenario(recordings + name + ".json", context, reporter);

@@ -285,6 +285,28 @@ TEST(TrainingScene, EveryShippedRecordingReplaysToTheEnd)
   EXPECT_GE(replayed, 5);
 }
 
+// The posterior cruciate ligament behind the anterior one: the hook (its
+// working side turned across the shaft, not along it, where the portal
+// mapping cannot roll it) reaches the ligament's face and pushes it.
+TEST(TrainingScene, TheHookPushesThePosteriorCruciateLigament)
+{
+  const SceneRecording recording = readSceneRecording(Data + "/Recordings/pcl-firmness.json");
+  const ScenarioDescription scenario = readScenario(recording.scenario);
+  EXPECT_EQ(scenario.tissueModel, "posterior_cruciate_ligament");
+  ScriptedHapticDevice scope(recording.scope), instrument(recording.instrument);
+  TrainingScene scene(scenario, scope, instrument);
+  const std::vector<Vector3> rest = scene.tissue().visual.positions;
+  ASSERT_TRUE(scene.runTo(1.8)) << scene.lastError();
+  double pushed = 0.0;
+  for (std::size_t i = 0; i < rest.size(); ++i)
+    pushed = std::max(pushed, (scene.visualPositions()[i] - rest[i]).norm());
+  EXPECT_GT(scene.metrics().peakForce, 1.0);
+  EXPECT_GT(pushed, 0.3) << "the ligament should give way under the hook";
+  EXPECT_FALSE(scene.contacts().contacts().empty());
+  ASSERT_TRUE(scene.runTo(scenario.duration));
+  EXPECT_TRUE(scene.contacts().contacts().empty()) << "the hook should have let go";
+}
+
 // "Your own tissue": a bundle made by the preparation (here from the thin
 // sheet's visual surface alone), named by the shipped scenario, replaying
 // the sheet's knife strokes around wherever it lies: it is cut.
