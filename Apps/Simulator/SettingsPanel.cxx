@@ -101,12 +101,11 @@ std::string SettingsPanel::settingsJson() const
     const double value = edit->text().trimmed().toDouble(&number);
     if (!number)
     {
-      throw InvalidInputError("settings: key '" + key + "': '" + edit->text().toStdString() +
-                              "' is not a number");
+      throw InvalidInputError(
+        "settings: key '" + key + "': '" + edit->text().toStdString() + "' is not a number");
     }
-    root[nlohmann::json::json_pointer("/" + QString::fromStdString(key)
-                                              .replace('.', '/')
-                                              .toStdString())] = value;
+    root[nlohmann::json::json_pointer(
+      "/" + QString::fromStdString(key).replace('.', '/').toStdString())] = value;
   }
   return root.dump();
 }

@@ -27,6 +27,7 @@
 // prepared as it loads.
 #include "SimulatorView.h"
 #include "SimulatorWindow.h"
+#include "TouchDevices.h"
 #include "VirtualDisplay.h"
 
 #include "MouseHapticDevice.h"
@@ -82,13 +83,12 @@ struct Options
 
 void printUsage()
 {
-  std::cerr
-    << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
-       "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
-       "                           [--size WxH] [--devices replay|mouse|touch|auto]\n"
-       "                           [--hd-library PATH] [--scope-device NAME]\n"
-       "                           [--instrument-device NAME] [--record R.json]\n"
-       "                           [--tissue BUNDLE.ttbundle|MESH]\n";
+  std::cerr << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
+               "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
+               "                           [--size WxH] [--devices replay|mouse|touch|auto]\n"
+               "                           [--hd-library PATH] [--scope-device NAME]\n"
+               "                           [--instrument-device NAME] [--record R.json]\n"
+               "                           [--tissue BUNDLE.ttbundle|MESH]\n";
 }
 
 /// The scenario with its tissue replaced by the user's: a bundle made by
@@ -330,19 +330,16 @@ public:
   /// What the window shows and controls.
   WindowDevices forWindow()
   {
+    if (Touch)
+    {
+      return touchWindowDevices(*Touch, Description);
+    }
     WindowDevices w;
     w.description = Description;
     if (mouse())
     {
       w.mouseScope = &MouseScope;
       w.mouseInstrument = &MouseInstrument;
-    }
-    if (Touch)
-    {
-      OpenHapticsSystem* touch = Touch.get();
-      w.startServo = [touch](HapticServo& servo) { touch->start(servo); };
-      w.stopServo = [touch] { touch->stop(); };
-      w.problems = [touch] { return touch->errors(); };
     }
     return w;
   }
@@ -452,6 +449,12 @@ int main(int argc, char* argv[])
   }
   catch (const Error& error)
   {
+    std::cerr << "ThinTissueSimulator: " << error.what() << "\n";
+    return 1;
+  }
+  catch (const std::filesystem::filesystem_error& error)
+  {
+    // e.g. an --output that is a file, not a directory
     std::cerr << "ThinTissueSimulator: " << error.what() << "\n";
     return 1;
   }

@@ -58,7 +58,8 @@ void ServoThread::stop()
 
 double ServoThread::now() const
 {
-  return ClockStart + std::chrono::duration<double>(std::chrono::steady_clock::now() - Start).count();
+  return ClockStart +
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - Start).count();
 }
 
 void ServoThread::run()

@@ -241,8 +241,7 @@ void readCutting(const ScenarioReader& r, ScenarioDescription& s)
     r.fail("cutting.cutSurfaceRows", "must be a whole number from 0 to 8");
   }
   s.cutSurfaceRows = static_cast<int>(rows);
-  s.fragmentAreaFraction =
-    r.number("cutting.fragmentAreaFraction", s.fragmentAreaFraction, false);
+  s.fragmentAreaFraction = r.number("cutting.fragmentAreaFraction", s.fragmentAreaFraction, false);
   if (s.fragmentAreaFraction < 0.0 || s.fragmentAreaFraction >= 1.0)
   {
     r.fail("cutting.fragmentAreaFraction", "must lie in [0, 1)");

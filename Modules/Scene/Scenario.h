@@ -10,8 +10,8 @@
 #include "MeniscusModel.h"
 #include "ScriptedHapticDevice.h"
 #include "SurgicalInstruments.h"
-#include "WrinkleGenerator.h"
 #include "ThinTissueSceneModule.h"
+#include "WrinkleGenerator.h"
 
 #include <string>
 

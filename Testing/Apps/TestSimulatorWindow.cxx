@@ -101,9 +101,8 @@ int main(int argc, char* argv[])
         dragTime = now;
         stage = 1;
       }
-      else if (stage == 1 &&
-               ((window.snapshot().instrument.translation - start).norm() > 5.0 ||
-                 now > dragTime + 5.0))
+      else if (stage == 1 && ((window.snapshot().instrument.translation - start).norm() > 5.0 ||
+                               now > dragTime + 5.0))
       {
         // (The drag reaches the picture through the servo and physics
         // threads: waited for, up to 5 s of scene time.)

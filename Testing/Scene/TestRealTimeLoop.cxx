@@ -120,8 +120,7 @@ TEST(RealTimeLoop, SnapshotsStayWholeWhileThePunchCuts)
 
 TEST(RealTimeLoop, WithTheServoOnItsOwnThreadTheSceneFollowsTheDevice)
 {
-  const ScenarioDescription scenario =
-    readScenario(Data + "/Scenarios/meniscus-examination.json");
+  const ScenarioDescription scenario = readScenario(Data + "/Scenarios/meniscus-examination.json");
   MouseHapticDevice scope, instrument;
   TrainingScene scene(scenario, scope, instrument);
   RealTimeLoop loop(scene); // servo thread, physics paced to the wall clock

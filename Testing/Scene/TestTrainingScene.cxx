@@ -285,6 +285,54 @@ TEST(TrainingScene, EveryShippedRecordingReplaysToTheEnd)
   EXPECT_GE(replayed, 5);
 }
 
+// The settings the window's panel changes: the wrinkle and cut-surface keys
+// read from a file, and the panel's changes validated as a file's are.
+TEST(TrainingScene, SettingsAreReadAndValidatedByKey)
+{
+  const ScenarioDescription s = parseScenario(
+    R"({"version": 1, "tissue": {"wrinkle": {"frequency": 9.0, "windowSize": 40}},
+        "cutting": {"cutSurfaceRows": 3, "fragmentAreaFraction": 0.01}})",
+    "good.json");
+  EXPECT_EQ(s.wrinkle.frequency, 9.0);
+  EXPECT_EQ(s.wrinkle.windowSize, 40);
+  EXPECT_EQ(s.cutSurfaceRows, 3);
+  EXPECT_EQ(s.fragmentAreaFraction, 0.01);
+  const std::string window =
+    messageOf(R"({"version": 1, "tissue": {"wrinkle": {"windowSize": 1.5}}})");
+  EXPECT_NE(window.find("key 'tissue.wrinkle.windowSize'"), std::string::npos) << window;
+  const std::string rows = messageOf(R"({"version": 1, "cutting": {"cutSurfaceRows": -1}})");
+  EXPECT_NE(rows.find("key 'cutting.cutSurfaceRows'"), std::string::npos) << rows;
+  const std::string frequency =
+    messageOf(R"({"version": 1, "tissue": {"wrinkle": {"frequency": 0}}})");
+  EXPECT_NE(frequency.find("key 'tissue.wrinkle.frequency'"), std::string::npos) << frequency;
+  // The panel: only its keys change; a bad one is refused naming it.
+  const ScenarioDescription changed =
+    applyScenarioSettings(s, R"({"tissue": {"material": {"youngModulus": 20}}})", "settings");
+  EXPECT_EQ(changed.material.youngModulus, 20.0);
+  EXPECT_EQ(changed.wrinkle.windowSize, 40);
+  EXPECT_EQ(changed.tissueModel, s.tissueModel);
+  try
+  {
+    applyScenarioSettings(s, R"({"tissue": {"material": {"poissonRatio": 0.5}}})", "settings");
+    FAIL();
+  }
+  catch (const InvalidInputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("'settings': key 'tissue.material.poissonRatio'"),
+      std::string::npos)
+      << e.what();
+  }
+  // Applied: the wrinkle window reaches the scene's generator.
+  Replay run;
+  ScenarioDescription narrow = run.scenario;
+  narrow.wrinkle.windowSize = 2;
+  ScriptedHapticDevice scope(run.recording.scope), instrument(run.recording.instrument);
+  TrainingScene narrowScene(narrow, scope, instrument);
+  ASSERT_TRUE(narrowScene.runTo(2.65));
+  ASSERT_TRUE(run.scene.runTo(2.65));
+  EXPECT_NE(narrowScene.visualPositions(), run.scene.visualPositions());
+}
+
 // The posterior cruciate ligament behind the anterior one: the hook (its
 // working side turned across the shaft, not along it, where the portal
 // mapping cannot roll it) reaches the ligament's face and pushes it.
