@@ -32,6 +32,10 @@ SimulatorWindow::SimulatorWindow(TrainingScene& scene, WindowDevices devices)
   Widget = new QVTKOpenGLNativeWidget(this);
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   window->SetNumberOfLayers(2);
+  // Anti-aliasing by FXAA (the arthroscope renderer's), not multisampling:
+  // 8 samples cost several times the frame on a software renderer (bench
+  // simulator).
+  window->SetMultiSamples(0);
   Widget->setRenderWindow(window);
   setCentralWidget(Widget);
   if (FreePlay)
@@ -146,6 +150,7 @@ void SimulatorWindow::showScene()
     window->RemoveRenderer(View->overview());
   }
   View = std::make_unique<SimulatorView>(*Scene);
+  View->renderer()->UseFXAAOn();
   window->AddRenderer(View->renderer());
   // The overview in a corner, over the arthroscope's black surround.
   vtkRenderer* overview = View->overview();
