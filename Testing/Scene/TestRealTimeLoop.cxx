@@ -142,7 +142,6 @@ TEST(RealTimeLoop, WithTheServoOnItsOwnThreadTheSceneFollowsTheDevice)
     std::this_thread::sleep_for(std::chrono::milliseconds(16));
     moved = (loop.latest().instrument.translation - start).norm();
   }
-  const SceneSnapshot& last = loop.latest();
   EXPECT_GT(loop.stepsRun(), 10) << "physics should have run beside the servo";
   EXPECT_NEAR(moved, 8.0, 0.1) << "the instrument should follow the stylus (portal scale 1)";
   EXPECT_FALSE(loop.finished()) << loop.error();
