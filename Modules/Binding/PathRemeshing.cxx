@@ -862,10 +862,14 @@ void PathInsertion::collectCuts(int t, std::vector<Chord>::const_iterator& chord
       if ((c[0] < d[0] && d[0] < c[1] && c[1] < d[1]) ||
           (d[0] < c[0] && c[0] < d[1] && d[1] < c[1]))
       {
-        throw InvalidInputError(label + ": paths " + std::to_string(std::min(c[2], d[2])) +
-                                " and " + std::to_string(std::max(c[2], d[2])) +
-                                " cross inside triangle " + std::to_string(t) +
-                                " (paths may touch, never cross)");
+        const int first = std::min(c[2], d[2]);
+        const int second = std::max(c[2], d[2]);
+        throw PathsCrossError(label + ": paths " + std::to_string(first) + " and " +
+                                std::to_string(second) + " cross inside triangle " +
+                                std::to_string(t) + " (paths may touch, never cross)",
+          first,
+          second,
+          t);
       }
     }
   }

@@ -20,6 +20,7 @@
 
 #include "SurfacePath.h"
 #include "ThinTissueBindingModule.h"
+#include "ThinTissueError.h"
 
 #include <vector>
 
@@ -54,6 +55,28 @@ struct RemeshedSurface
   std::vector<int> inputTriangle;
 };
 
+/// Two paths crossing inside a triangle (insertPaths): which ones, so that
+/// a caller can find one of them again off the other's triangles.
+class THINTISSUEBINDING_EXPORT PathsCrossError : public InvalidInputError
+{
+public:
+  PathsCrossError(const std::string& message, int firstPath, int secondPath, int triangle)
+    : InvalidInputError(message)
+    , FirstPath(firstPath)
+    , SecondPath(secondPath)
+    , CrossedTriangle(triangle)
+  {
+  }
+  int firstPath() const { return FirstPath; }
+  int secondPath() const { return SecondPath; }
+  int triangle() const { return CrossedTriangle; }
+
+private:
+  int FirstPath;
+  int SecondPath;
+  int CrossedTriangle;
+};
+
 /// Inserts the paths into `mesh` (closed or open, edge-manifold; non-manifold
 /// edges are split in all their triangles). Points of paths on the same edge
 /// within `mergeTolerance` times the edge length of the smallest of them are
@@ -70,8 +93,9 @@ struct RemeshedSurface
 /// when a path point refers to a missing vertex or edge (or an edge given
 /// end first, or a parameter outside [0, 1]), when two consecutive path
 /// points do not share a triangle, when a crossed triangle repeats a
-/// vertex, or when two paths cross inside a triangle (naming the paths and
-/// the triangle; they may touch, i.e. share a point, never cross).
+/// vertex, or when two paths cross inside a triangle (PathsCrossError,
+/// naming the paths and the triangle; they may touch, i.e. share a point,
+/// never cross).
 ///
 /// Cost: one copy of the mesh and one pass over its triangles, plus time in
 /// proportion to the path points and the triangles they cross. Deterministic

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <tuple>
 #include <unordered_map>
@@ -945,16 +946,19 @@ SideRegions sideRegions(const RemeshedSurface& rimmed,
 /// The requested paths, in parallel or not (same result), in blocks so that
 /// progress (and abort) is reported from this thread between `from` and
 /// `to`. With `halves`, a path of side +1 stays on halves[0], of side -1 on
-/// halves[1].
+/// halves[1]. `detours`: per path, the vertices of the geodesic it was
+/// re-routed around (a chord moved off the rim paths), else 0.
 std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
   const std::vector<PathRequest>& requests,
   const SideRegions* regions,
   bool parallel,
   const BindingProgress& progress,
   double from,
-  double to)
+  double to,
+  std::vector<int>& detours)
 {
   std::vector<SurfacePath> paths(requests.size());
+  detours.assign(requests.size(), 0);
   auto computePath = [&](std::size_t k)
   {
     const PathRequest& r = requests[k];
@@ -996,7 +1000,9 @@ std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
     ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
     try
     {
+      const auto alongRim = static_cast<int>(paths[k].points.size());
       paths[k] = finder.shortestPathWithin(r.source, r.target, regions->cores[slot], ends);
+      detours[k] = std::max(1, alongRim - 2);
     }
     catch (const InvalidInputError&)
     {
@@ -1563,6 +1569,240 @@ void collectPathRequests(const VisualCollisionBinding& binding,
   }
 }
 
+/// The triangles a surface path runs through: those around its vertices
+/// and on either side of its edge points.
+std::vector<int> trianglesAlong(const SurfacePath& path, const TriangleMeshAdjacency& adjacency)
+{
+  std::vector<int> triangles;
+  for (const SurfacePoint& point : path.points)
+  {
+    if (point.isVertex())
+    {
+      triangles.insert(triangles.end(),
+        adjacency.vertexTrianglesBegin(point.vertex),
+        adjacency.vertexTrianglesEnd(point.vertex));
+      continue;
+    }
+    const int e = adjacency.findEdge(point.edgeStart, point.edgeEnd);
+    triangles.insert(
+      triangles.end(), adjacency.edgeTrianglesBegin(e), adjacency.edgeTrianglesEnd(e));
+  }
+  return triangles;
+}
+
+/// How far a path strays from the straight line between its ends.
+double straightness(const SurfacePath& path, const std::vector<Vector3>& positions)
+{
+  const double ends =
+    (path.points.back().position(positions) - path.points.front().position(positions)).norm();
+  return path.length / std::max(ends, 1e-300);
+}
+
+/// insertPaths, with paths that cross found again (paths may touch, never
+/// cross: 5.2.3). Shortest paths cross where the rim is rough: a rim path
+/// whose ends sit on either side of a notch runs over the face and across
+/// its neighbour's, and two side paths from points a rough rim put out of
+/// order cross each other. Of two crossing paths, the one that strays more
+/// from a straight line (and has a region: regionOf) is found again as the
+/// shortest path on its region off the other's triangles (around its own
+/// ends allowed); each such path counts the other's points as detours.
+/// The crossing is reported when that finds no path, or after 16 tries.
+RemeshedSurface insertUncrossedPaths(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency,
+  std::vector<SurfacePath>& paths,
+  const std::function<const std::vector<char>*(int path)>& regionOf,
+  std::vector<int>& detours)
+{
+  detours.assign(paths.size(), 0);
+  std::vector<std::vector<int>> avoided(paths.size());
+  const GeodesicPathFinder finder(mesh, adjacency);
+  for (int attempt = 0;; ++attempt)
+  {
+    try
+    {
+      return insertPaths(mesh, paths, PathMergeTolerance);
+    }
+    catch (const PathsCrossError& crossing)
+    {
+      int again = crossing.firstPath();
+      int other = crossing.secondPath();
+      if (regionOf(other) != nullptr &&
+          (regionOf(again) == nullptr || straightness(paths[other], mesh.positions) >
+                                           straightness(paths[again], mesh.positions)))
+      {
+        std::swap(again, other);
+      }
+      const std::vector<char>* region = regionOf(again);
+      if (region == nullptr || attempt == 16)
+      {
+        throw;
+      }
+      // Off every path it was found again around so far (else two
+      // neighbours can send it back and forth).
+      avoided[again].push_back(other);
+      std::vector<char> allowed = *region;
+      for (int k : avoided[again])
+      {
+        for (int t : trianglesAlong(paths[k], adjacency))
+        {
+          allowed[t] = 0;
+        }
+      }
+      const SurfacePath& before = paths[again];
+      std::vector<int> ends;
+      for (const SurfacePoint* end : { &before.points.front(), &before.points.back() })
+      {
+        for (int t : trianglesAlong(SurfacePath{ { *end }, 0.0 }, adjacency))
+        {
+          if ((*region)[t])
+          {
+            ends.push_back(t);
+          }
+        }
+      }
+      std::sort(ends.begin(), ends.end());
+      ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+      try
+      {
+        paths[again] = finder.shortestPathWithin(
+          before.points.front().vertex, before.points.back().vertex, allowed, ends);
+      }
+      catch (const InvalidInputError&)
+      {
+        throw crossing;
+      }
+      detours[again] += static_cast<int>(paths[other].points.size());
+    }
+  }
+}
+
+/// Two rim paths that leave a border collision vertex's rim point along
+/// the same visual edges (a rough rim: the point sits at the end of a
+/// spur, and both neighbours' shortest paths come in along it) make a
+/// dead end of the equator: the point's triangles all lie on one half, and
+/// the other half's paths from it found it "not connected". The rim point
+/// moves to where the two paths part and the shared run leaves both (a
+/// rim point is where the rim paths meet, 5.2.2). Returns the count moved.
+int trimRimDeadEnds(std::vector<std::vector<int>>& rimPathVertices,
+  const std::vector<PathRequest>& rimRequests,
+  const CollisionTopology& topology,
+  std::vector<std::array<int, 2>>& pairedVisualVertices)
+{
+  // The (at most two) rim paths at each border collision vertex, and
+  // whether they start there.
+  std::vector<std::vector<std::pair<int, bool>>> pathsAt(pairedVisualVertices.size());
+  for (std::size_t k = 0; k < rimRequests.size(); ++k)
+  {
+    const auto& edge = topology.edges[rimRequests[k].edge];
+    pathsAt[edge[0]].emplace_back(static_cast<int>(k), true);
+    pathsAt[edge[1]].emplace_back(static_cast<int>(k), false);
+  }
+  int moved = 0;
+  for (std::size_t c = 0; c < pathsAt.size(); ++c)
+  {
+    auto& pair = pairedVisualVertices[c];
+    if (pathsAt[c].size() != 2 || pair[0] != pair[1])
+    {
+      continue;
+    }
+    std::vector<int>& a = rimPathVertices[pathsAt[c][0].first];
+    std::vector<int>& b = rimPathVertices[pathsAt[c][1].first];
+    const bool aStarts = pathsAt[c][0].second;
+    const bool bStarts = pathsAt[c][1].second;
+    // The i-th vertex from c's end of a path.
+    auto from = [](const std::vector<int>& path, bool starts, std::size_t i)
+    { return starts ? path[i] : path[path.size() - 1 - i]; };
+    std::size_t shared = 0;
+    while (shared + 2 < a.size() && shared + 2 < b.size() &&
+           from(a, aStarts, shared + 1) == from(b, bStarts, shared + 1))
+    {
+      ++shared;
+    }
+    if (shared == 0 || from(a, aStarts, 0) != pair[0] || from(b, bStarts, 0) != pair[0])
+    {
+      continue;
+    }
+    auto trim = [shared](std::vector<int>& path, bool starts)
+    {
+      const auto count = static_cast<std::ptrdiff_t>(shared);
+      starts ? path.erase(path.begin(), path.begin() + count)
+             : path.erase(path.end() - count, path.end());
+    };
+    trim(a, aStarts);
+    trim(b, bStarts);
+    pair[0] = pair[1] = from(a, aStarts, 0);
+    ++moved;
+  }
+  return moved;
+}
+
+/// 5.2.3 Re-meshing along the inner paths (crossings found again); the
+/// rim paths, given again by their vertices, pick up the vertices inserted
+/// on their edges; paths that touch are moved apart. Sets binding.visual
+/// and binding.paths (rim paths first), each path's detours summed.
+void remeshAlongAllPaths(VisualCollisionBinding& binding,
+  const RemeshedSurface& rimmed,
+  const TriangleMeshAdjacency& rimmedAdjacency,
+  const SideRegions& regions,
+  const std::vector<PathRequest>& rimRequests,
+  const std::vector<PathRequest>& innerRequests,
+  std::vector<SurfacePath> innerPaths,
+  const std::vector<int>& rimDetours,
+  const std::vector<int>& innerDetours)
+{
+  std::vector<PathRequest> requests = rimRequests;
+  requests.insert(requests.end(), innerRequests.begin(), innerRequests.end());
+  std::vector<SurfacePath> allPaths;
+  for (const std::vector<int>& vertices : rimmed.pathVertices)
+  {
+    SurfacePath path;
+    for (int v : vertices)
+    {
+      path.points.push_back(SurfacePoint::atVertex(v));
+    }
+    allPaths.push_back(std::move(path));
+  }
+  allPaths.insert(allPaths.end(),
+    std::make_move_iterator(innerPaths.begin()),
+    std::make_move_iterator(innerPaths.end()));
+  std::vector<int> detours;
+  RemeshedSurface remeshed = insertUncrossedPaths(
+    rimmed.mesh,
+    rimmedAdjacency,
+    allPaths,
+    [&](int k) -> const std::vector<char>*
+    {
+      const int inner = k - static_cast<int>(rimRequests.size());
+      return inner < 0 ? nullptr : &regions.halves[innerRequests[inner].side > 0 ? 0 : 1];
+    },
+    detours);
+  const std::vector<int> separated = separateTouchingPaths(remeshed);
+  for (std::size_t k = 0; k < detours.size(); ++k)
+  {
+    const int computed =
+      k < rimDetours.size() ? rimDetours[k] : innerDetours[k - rimDetours.size()];
+    detours[k] = std::min(
+      detours[k] + separated[k] + computed, static_cast<int>(remeshed.pathVertices[k].size()));
+  }
+  binding.visual = std::move(remeshed.mesh);
+  const TriangleMesh& mesh = binding.visual;
+  for (std::size_t k = 0; k < requests.size(); ++k)
+  {
+    BindingPath path;
+    path.collisionEdge = requests[k].edge;
+    path.side = requests[k].side;
+    path.visualVertices = std::move(remeshed.pathVertices[k]);
+    path.detours = detours[k];
+    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+    {
+      path.length +=
+        (mesh.positions[path.visualVertices[i]] - mesh.positions[path.visualVertices[i - 1]])
+          .norm();
+    }
+    binding.paths.push_back(std::move(path));
+  }
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -1626,17 +1866,36 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   collectPathRequests(binding, topology, rimRequests, innerRequests);
   const double pathsDone = static_cast<double>(rimRequests.size() + innerRequests.size());
   RemeshedSurface rimmed;
+  std::vector<int> rimDetours;
   {
     const GeodesicPathFinder finder(start, startAdjacency);
-    const std::vector<SurfacePath> rimPaths = computePaths(finder,
+    std::vector<SurfacePath> rimPaths = computePaths(finder,
       rimRequests,
       nullptr,
       settings.parallel,
       progress,
       0.1,
-      0.1 + 0.6 * rimRequests.size() / pathsDone);
+      0.1 + 0.6 * rimRequests.size() / pathsDone,
+      rimDetours);
     report(progress, 0.1 + 0.6 * rimRequests.size() / pathsDone, "re-meshing along the rim paths");
-    rimmed = insertPaths(start, rimPaths, PathMergeTolerance);
+    const std::vector<char> everywhere(start.triangleCount(), 1);
+    std::vector<int> uncrossingDetours;
+    rimmed = insertUncrossedPaths(
+      start, startAdjacency, rimPaths, [&](int) { return &everywhere; }, uncrossingDetours);
+    for (std::size_t k = 0; k < rimDetours.size(); ++k)
+    {
+      rimDetours[k] += uncrossingDetours[k];
+    }
+  }
+  if (trimRimDeadEnds(rimmed.pathVertices, rimRequests, topology, binding.pairedVisualVertices) > 0)
+  {
+    for (PathRequest& r : innerRequests)
+    {
+      const auto& edge = topology.edges[r.edge];
+      const int slot = r.side > 0 ? 0 : 1;
+      r.source = binding.pairedVisualVertices[edge[0]][slot];
+      r.target = binding.pairedVisualVertices[edge[1]][slot];
+    }
   }
   const TriangleMeshAdjacency rimmedAdjacency(rimmed.mesh);
   const std::vector<std::int8_t> half = surfaceHalves(rimmed.mesh,
@@ -1647,6 +1906,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     topology);
   const SideRegions regions = sideRegions(rimmed, rimmedAdjacency, half);
   std::vector<SurfacePath> innerPaths;
+  std::vector<int> innerDetours;
   {
     const GeodesicPathFinder finder(rimmed.mesh, rimmedAdjacency);
     innerPaths = computePaths(finder,
@@ -1655,44 +1915,21 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
       settings.parallel,
       progress,
       0.1 + 0.6 * rimRequests.size() / pathsDone,
-      0.7);
+      0.7,
+      innerDetours);
   }
 
-  // 5.2.3 Re-meshing along the inner paths; the rim paths, given again by
-  // their vertices, pick up the vertices inserted on their edges.
+  // 5.2.3 Re-meshing along the inner paths.
   report(progress, 0.7, "re-meshing the visual mesh along the paths");
-  std::vector<PathRequest> requests = rimRequests;
-  requests.insert(requests.end(), innerRequests.begin(), innerRequests.end());
-  std::vector<SurfacePath> allPaths;
-  for (const std::vector<int>& vertices : rimmed.pathVertices)
-  {
-    SurfacePath path;
-    for (int v : vertices)
-    {
-      path.points.push_back(SurfacePoint::atVertex(v));
-    }
-    allPaths.push_back(std::move(path));
-  }
-  allPaths.insert(allPaths.end(), innerPaths.begin(), innerPaths.end());
-  RemeshedSurface remeshed = insertPaths(rimmed.mesh, allPaths, PathMergeTolerance);
-  const std::vector<int> detours = separateTouchingPaths(remeshed);
-  binding.visual = std::move(remeshed.mesh);
-  const TriangleMesh& mesh = binding.visual;
-  for (std::size_t k = 0; k < requests.size(); ++k)
-  {
-    BindingPath path;
-    path.collisionEdge = requests[k].edge;
-    path.side = requests[k].side;
-    path.visualVertices = std::move(remeshed.pathVertices[k]);
-    path.detours = detours[k];
-    for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
-    {
-      path.length +=
-        (mesh.positions[path.visualVertices[i]] - mesh.positions[path.visualVertices[i - 1]])
-          .norm();
-    }
-    binding.paths.push_back(std::move(path));
-  }
+  remeshAlongAllPaths(binding,
+    rimmed,
+    rimmedAdjacency,
+    regions,
+    rimRequests,
+    innerRequests,
+    std::move(innerPaths),
+    rimDetours,
+    innerDetours);
 
   // Flood fill: path edges are barriers; each collision triangle and side
   // is seeded beside its own paths.

@@ -994,8 +994,13 @@ TEST(PathRemeshing, CrossingPathsAreRejected)
     insertPaths(grid, paths);
     FAIL() << "crossing paths accepted";
   }
-  catch (const InvalidInputError& error)
+  catch (const PathsCrossError& error)
   {
+    // The paths and the triangle by number too, for a caller that finds
+    // one of them again (the binding).
+    EXPECT_EQ(error.firstPath(), 0);
+    EXPECT_EQ(error.secondPath(), 1);
+    EXPECT_EQ(error.triangle(), inside);
     const std::string message = error.what();
     EXPECT_NE(message.find("grid plane"), std::string::npos) << message;
     EXPECT_NE(message.find("triangle " + std::to_string(inside) + " "), std::string::npos)
