@@ -56,6 +56,36 @@ void zipRows(const std::vector<int>& upper,
   }
 }
 
+/// The cut surface's outward direction on collision edge (a, b): across
+/// the edge in the plane of its triangle, away from the triangle's third
+/// corner (rest configuration).
+Vector3 outwardAcross(const CuttableCollisionMesh& collision, int a, int b)
+{
+  const int region = collision.trianglesOfEdge(a, b)[0];
+  const Triangle& corners = collision.triangles()[region];
+  const auto& rest = collision.restPositions();
+  int third = corners[0];
+  for (int c : corners)
+    third = (c != a && c != b) ? c : third;
+  const Vector3 along = rest[b] - rest[a];
+  Vector3 outward = along.cross(along.cross(rest[third] - rest[a]));
+  if (outward.dot(rest[third] - rest[a]) > 0.0)
+    outward = -outward;
+  return outward.normalized();
+}
+
+/// Where a smooth cut puts the vertex of row fraction s (0 at the + path,
+/// 1 at the - path) at edge parameter u: between the two paths (5.3.4).
+Vector3 betweenPaths(const std::vector<Vector3>& positions,
+  const std::array<std::vector<int>, 2>& sides,
+  const std::array<std::vector<double>, 2>& at,
+  double u,
+  double s)
+{
+  return (1.0 - s) * pointAt(positions, sides[1], at[1], u) +
+         s * pointAt(positions, sides[0], at[0], u);
+}
+
 } // namespace
 
 void CuttableVisualMesh::splitStrip(std::uint64_t key,
@@ -98,30 +128,33 @@ void CuttableVisualMesh::splitStrip(std::uint64_t key,
 
 const std::vector<int>& CuttableVisualMesh::endColumn(int collisionVertex, const Vector3& outward)
 {
-  auto [it, added] = EndColumns.emplace(collisionVertex, std::vector<int>{});
+  auto [it, added] = EndColumns.emplace(collisionVertex, EndColumn{});
+  std::vector<int>& column = it->second.vertices;
   if (!added)
-    return it->second;
+    return column;
   const int minus = Paired[collisionVertex][0], plus = Paired[collisionVertex][1];
   const int rows = Settings.cutSurfaceRows;
+  it->second.rim = minus == plus;
   for (int r = 0; r < rows; ++r)
   {
     if (minus == plus)
     {
-      it->second.push_back(plus); // on the rim both sides meet
+      column.push_back(plus); // on the rim both sides meet
       continue;
     }
     const double s = static_cast<double>(r + 1) / (rows + 1);
     const int w = addVertexCopy(plus);
     Mesh.positions[w] = (1.0 - s) * Mesh.positions[plus] + s * Mesh.positions[minus];
+    Mesh.positions[w] += jaggedOffset(Mesh.positions[w], outward);
     if (Mesh.hasNormals())
       Mesh.normals[w] = outward;
     Bindings[w].kind = BindingKind::CollisionVertex;
     Bindings[w].element = collisionVertex;
     Bindings[w].side = 0;
     Bindings[w].parameters = Vector3(1.0, 0.0, 0.0);
-    it->second.push_back(w);
+    column.push_back(w);
   }
-  return it->second;
+  return column;
 }
 
 /// The part of an opened edge's path the cut surface joins: where two cuts
@@ -149,17 +182,7 @@ void CuttableVisualMesh::buildStrip(const CuttableCollisionMesh& collision,
     freeTriangle(t);
   strip.triangles.clear();
   const int region = collision.trianglesOfEdge(a, b)[0];
-  const Triangle& corners = collision.triangles()[region];
-  const auto& rest = collision.restPositions();
-  int third = corners[0];
-  for (int c : corners)
-    third = (c != a && c != b) ? c : third;
-  const Vector3 along = rest[b] - rest[a];
-  Vector3 outward = along.cross(along.cross(rest[third] - rest[a]));
-  if (outward.dot(rest[third] - rest[a]) > 0.0)
-    outward = -outward;
-  outward.normalize();
-
+  const Vector3 outward = outwardAcross(collision, a, b);
   const EdgePaths& paths = Paths.at(edgeKey(a, b));
   std::vector<std::vector<int>> rows;
   rows.push_back(openPart(paths.sides[1], a, b));
@@ -265,15 +288,15 @@ void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision
           all.begin(), all.end(), [](double x, double y) { return std::abs(x - y) < ColumnMerge; }),
         all.end());
       strip.rows.resize(static_cast<std::size_t>(rows));
+      const Vector3 outward = outwardAcross(collision, a, b);
       for (int r = 0; r < rows; ++r)
       {
         const double s = static_cast<double>(r + 1) / (rows + 1);
         for (double u : all)
         {
-          const Vector3 plus = pointAt(Mesh.positions, paths.sides[1], at[1], u);
-          const Vector3 minus = pointAt(Mesh.positions, paths.sides[0], at[0], u);
+          const Vector3 smooth = betweenPaths(Mesh.positions, paths.sides, at, u, s);
           const int w = addVertexCopy(paths.sides[1][1]);
-          Mesh.positions[w] = (1.0 - s) * plus + s * minus;
+          Mesh.positions[w] = smooth + jaggedOffset(smooth, outward);
           bindToEdge(w, a, b, u, 0);
           strip.rows[r].push_back(w);
           context.newVertices.push_back(w);
@@ -286,6 +309,42 @@ void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision
       context.newVertices.push_back(static_cast<int>(w));
     context.changedTriangles.insert(
       context.changedTriangles.end(), strip.triangles.begin(), strip.triangles.end());
+  }
+}
+
+void CuttableVisualMesh::smoothPlaces(std::uint64_t key,
+  const CutStrip& strip,
+  std::vector<SmoothPlace>& places) const
+{
+  const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
+  const EdgePaths& paths = Paths.at(key);
+  const std::array<std::vector<double>, 2> at{ { pathParameters(paths.sides[0], a, b),
+    pathParameters(paths.sides[1], a, b) } };
+  const auto rows = static_cast<int>(strip.rows.size());
+  for (int r = 0; r < rows; ++r)
+  {
+    const double s = static_cast<double>(r + 1) / (rows + 1);
+    for (int w : strip.rows[r])
+    {
+      const double u = edgeParameter(w, a, b);
+      places.push_back({ w, u, betweenPaths(Mesh.positions, paths.sides, at, u, s) });
+    }
+  }
+  // The columns at the edge's ends (shared with the strips meeting there).
+  for (const int end : { a, b })
+  {
+    const auto column = EndColumns.find(end);
+    if (column == EndColumns.end() || column->second.rim)
+      continue;
+    const Vector3& plus = Mesh.positions[Paired[end][1]];
+    const Vector3& minus = Mesh.positions[Paired[end][0]];
+    const std::vector<int>& vertices = column->second.vertices;
+    const auto count = static_cast<int>(vertices.size());
+    for (int r = 0; r < count; ++r)
+    {
+      const double s = static_cast<double>(r + 1) / (count + 1);
+      places.push_back({ vertices[r], end == a ? 0.0 : 1.0, (1.0 - s) * plus + s * minus });
+    }
   }
 }
 

@@ -100,6 +100,14 @@ struct TissueCutReport
   bool changed() const { return collision.changed(); }
 };
 
+/// What one contouring pass did (6.4.4, TissueCutter::contour).
+struct CutRimContourReport
+{
+  /// Cut-surface vertices moved (rest positions and embedding), each once.
+  std::vector<int> movedVertices;
+  double milliseconds = 0.0;
+};
+
 class THINTISSUECUTTING_EXPORT TissueCutter
 {
 public:
@@ -155,6 +163,20 @@ public:
   const HexahedralEmbedding& visualEmbedding() const { return VisualEmbedding; }
   /// Visual vertex positions from the solver's (or the rest) node positions.
   std::vector<Vector3> currentVisualPositions() const;
+
+  /// Contouring (6.4.4, TissueContour.cxx): a tool held on the cut rim
+  /// within `radius` of `centre` (world, current positions) smooths the cut
+  /// surface around the parameters it touches: on each collision edge of
+  /// the tissue's cut that passes within the radius, the cut-surface
+  /// vertices move toward the smooth cut by strength (1 - (d/r)^2)^2 of the
+  /// way, d being the distance of their point on the edge from the centre.
+  /// Nothing else moves, nothing is cut or removed; the moved vertices keep
+  /// their hexahedra. Throws InvalidInputError, changing nothing, on a
+  /// non-finite centre, a radius <= 0 or a strength outside [0, 1].
+  CutRimContourReport contour(const Vector3& centre, double radius, double strength);
+  /// The roughness of the cut surface of the pieces still in the tissue
+  /// (6.4.4; zero without a visual mesh or a jagged cut).
+  CutSurfaceRoughness cutRimRoughness() const;
 
 private:
   void updateSolver(const HexahedronDuplicationResult& duplication);

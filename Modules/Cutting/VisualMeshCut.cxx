@@ -374,6 +374,14 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
     throw InvalidInputError(
       label + ": cut surface rows " + std::to_string(settings.cutSurfaceRows) + " (must be >= 0)");
   }
+  if (!(settings.jaggedAmplitude >= 0.0 && settings.jaggedWavelength > 0.0) ||
+      !std::isfinite(settings.jaggedAmplitude + settings.jaggedWavelength))
+  {
+    throw InvalidInputError(label + ": jagged cut surface amplitude " +
+                            std::to_string(settings.jaggedAmplitude) + " and wavelength " +
+                            std::to_string(settings.jaggedWavelength) +
+                            " (must be >= 0 and > 0, finite)");
+  }
   if (Bindings.size() != Mesh.vertexCount() || TriangleRegion.size() != Mesh.triangleCount() ||
       TriangleSide.size() != Mesh.triangleCount() ||
       Paired.size() != binding.collisionPositions.size())

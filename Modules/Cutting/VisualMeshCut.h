@@ -48,6 +48,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -62,6 +63,26 @@ struct VisualCutSettings
   /// Rows of cut-surface vertices between the + and - sides (fig. 5-12c);
   /// 0 joins the two sides directly.
   int cutSurfaceRows = 1;
+  /// Jagged cut surface (6.4.4): the rows' vertices are moved across the
+  /// cut, in the plane of its collision triangle (never through the
+  /// tissue's thickness), by seeded value noise of this amplitude (mm; 0:
+  /// a smooth cut) and wavelength (mm), so that a bitten rim looks jagged
+  /// (fig. 6-12) and contouring has something to even out (fig. 6-15).
+  /// The same seed gives the same rim. Needs cutSurfaceRows >= 1.
+  double jaggedAmplitude = 0.0;
+  double jaggedWavelength = 0.5;
+  std::uint32_t jaggedSeed = 0;
+};
+
+/// How far the cut surface departs from the smooth cut (6.4.4): over the
+/// cut-surface vertices counted, the distance of each from its place on the
+/// surface ruled between the rim's + and - paths (where a smooth cut puts
+/// it), root mean square and largest (mm).
+struct CutSurfaceRoughness
+{
+  double rootMeanSquare = 0.0;
+  double maximum = 0.0;
+  std::size_t vertices = 0;
 };
 
 /// What one cut did to the visual mesh.
@@ -126,6 +147,20 @@ public:
   /// Barycentric parameters of visual vertex v in a collision triangle with
   /// corners `corners` (index `triangle`) that holds its bound element.
   Vector3 parametersIn(int v, int triangle, const Triangle& corners) const;
+
+  /// Contouring (6.4.4, CutSurfaceContour.cxx): every cut-surface vertex
+  /// of the strips on collision edges (a, b) that `near(a, b)` accepts
+  /// moves `pull(a, b, u)` of the way (0 to 1) toward its place on the
+  /// smooth cut, u being its parameter on the edge from a (a < b); the
+  /// columns at the edge's ends take pull(a, b, 0) and pull(a, b, 1).
+  /// Nothing else moves and nothing is removed. Appends the vertices moved
+  /// (rest positions changed) to `moved`, each once.
+  void smoothCutSurface(const std::function<bool(int, int)>& near,
+    const std::function<double(int, int, double)>& pull,
+    std::vector<int>& moved);
+  /// The roughness of the cut surface on the collision edges (a, b) that
+  /// `counts(a, b)` accepts (e.g. those of pieces still in the tissue).
+  CutSurfaceRoughness cutSurfaceRoughness(const std::function<bool(int, int)>& counts) const;
 
 private:
   struct EdgePaths
@@ -268,6 +303,21 @@ private:
   const std::vector<int>& endColumn(int collisionVertex, const Vector3& outward);
   std::vector<int> openPart(const std::vector<int>& path, int a, int b) const;
   void buildStrip(const CuttableCollisionMesh& collision, int a, int b, CutStrip& strip);
+  /// The jagged cut surface's offset of a cut-surface vertex made at
+  /// `restPosition` (JaggedCutSurface.cxx).
+  Vector3 jaggedOffset(const Vector3& restPosition, const Vector3& outward) const;
+  /// A cut-surface vertex, its parameter on its strip's collision edge and
+  /// where a smooth cut puts it.
+  struct SmoothPlace
+  {
+    int vertex;
+    double u;
+    Vector3 smooth;
+  };
+  /// The places of the strip's rows and end columns (CutSurface.cxx).
+  void smoothPlaces(std::uint64_t key,
+    const CutStrip& strip,
+    std::vector<SmoothPlace>& places) const;
 
   VisualCutSettings Settings;
   TriangleMesh Mesh;
@@ -282,8 +332,14 @@ private:
   std::vector<std::array<std::vector<int>, 2>> Regions;
   std::unordered_map<std::uint64_t, EdgePaths> Paths;
   std::unordered_map<std::uint64_t, CutStrip> Strips;
-  /// Per collision vertex on a cut: the cut-surface vertices of its column.
-  std::unordered_map<int, std::vector<int>> EndColumns;
+  /// Per collision vertex on a cut: the cut-surface vertices of its column
+  /// (on the rim, its one visual vertex once per row).
+  struct EndColumn
+  {
+    std::vector<int> vertices;
+    bool rim = false;
+  };
+  std::unordered_map<int, EndColumn> EndColumns;
   std::vector<int> FreeTriangles;
   int CutSurfaceTexture = -1;
   /// Per visual vertex, -1 between cuts (see CutContext::localIndex).

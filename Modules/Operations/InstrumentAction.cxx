@@ -27,12 +27,13 @@ void checkSettings(const SurgicalInstrumentModel& model, const InstrumentActionS
   const bool good =
     s.closedJawOpening >= 0.0 && s.closedJawOpening < 1.0 && s.biteDepthBelowJaw >= 0.0 &&
     s.scissorsHalfHeight > 0.0 && s.shaverReach > 0.0 && s.shaverBitePeriod >= 0.0 &&
+    s.contourStrength >= 0.0 && s.contourStrength <= 1.0 &&
     std::isfinite(s.biteDepthBelowJaw + s.scissorsHalfHeight + s.shaverReach + s.shaverBitePeriod);
   if (!good)
   {
     throw InvalidInputError("instrument '" + model.name +
                             "': action settings out of range (closed jaw opening in [0, 1), "
-                            "depths and reach positive and finite)");
+                            "depths and reach positive and finite, contour strength in [0, 1])");
   }
 }
 
@@ -68,6 +69,19 @@ double signedVolume(const std::vector<Vector3>& positions, const std::vector<Tri
 }
 
 } // namespace
+
+const char* shaverModeName(ShaverMode mode)
+{
+  return mode == ShaverMode::Contour ? "contour" : "remove";
+}
+
+ShaverMode shaverModeFromName(const std::string& name)
+{
+  for (const ShaverMode mode : { ShaverMode::Remove, ShaverMode::Contour })
+    if (name == shaverModeName(mode))
+      return mode;
+  throw InvalidInputError("shaver mode '" + name + "': unknown (valid: remove, contour)");
+}
 
 bool instrumentCuts(SurgicalInstrumentType type)
 {
@@ -113,6 +127,18 @@ Blade InstrumentAction::shaverBite(const RigidPose& pose) const
   const Vector3 reach = Settings.shaverReach * Vector3::UnitX();
   return Blade::sweptOutline(
     placedOutline(Model.biteOutline, pose, -reach), placedOutline(Model.biteOutline, pose, reach));
+}
+
+std::pair<Vector3, double> InstrumentAction::contourReach(const RigidPose& pose) const
+{
+  Vector3 centre = Vector3::Zero();
+  for (const Vector3& p : Model.biteOutline)
+    centre += p;
+  centre /= static_cast<double>(Model.biteOutline.size());
+  double halfDiagonal = 0.0;
+  for (const Vector3& p : Model.biteOutline)
+    halfDiagonal = std::max(halfDiagonal, (p - centre).norm());
+  return { pose * centre, halfDiagonal + Settings.shaverReach };
 }
 
 Blade InstrumentAction::scissorsStroke(const InstrumentCommand& before,
@@ -195,7 +221,8 @@ OperationKind InstrumentAction::actsNow(const InstrumentCommand& command)
       if (!command.working || command.time - LastShave < Settings.shaverBitePeriod)
         return OperationKind::None;
       LastShave = command.time;
-      return OperationKind::Shave;
+      return Settings.shaverMode == ShaverMode::Contour ? OperationKind::Contour
+                                                        : OperationKind::Shave;
     case SurgicalInstrumentType::ProbeHook:
       break;
   }
@@ -213,6 +240,14 @@ InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
     return result;
   }
   result.kind = actsNow(command);
+  if (result.kind == OperationKind::Contour)
+  {
+    Previous = command;
+    const auto [centre, radius] = contourReach(command.pose);
+    result.contour = cutter.contour(centre, radius, Settings.contourStrength);
+    Operations += result.contoured() ? 1 : 0;
+    return result;
+  }
   const Blade blade =
     result.kind == OperationKind::None ? Blade{} : bladeBetween(Previous, command);
   Previous = command;

@@ -14,7 +14,11 @@
 //  - shavers (6.4.3, piecewise removal): while the motor runs and tissue
 //    lies in front of the window, the window outline extruded across the
 //    tissue cuts the tissue in reach loose, and it is removed -- one bite
-//    per `shaverBitePeriod`, as the inner cutter does.
+//    per `shaverBitePeriod`, as the inner cutter does;
+//  - shavers in contouring mode (6.4.4): nothing is cut; each bite period
+//    the running shaver smooths the jagged cut surface where its window
+//    touches the cut rim (TissueCutter::contour), so the trainee evens the
+//    rim out (fig. 6-15); no material goes.
 //
 // The blades are built from the instrument model's working features
 // (SurgicalInstruments.h: biteOutline, cuttingEdge), moved by the pose; the
@@ -30,6 +34,7 @@
 #include "TissueCutter.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace thintissue
@@ -50,18 +55,33 @@ struct InstrumentCommand
 
 enum class OperationKind
 {
-  None,  ///< nothing this step
-  Cut,   ///< scissors or scalpel stroke
-  Bite,  ///< punch bite
-  Shave, ///< shaver bite
+  None,    ///< nothing this step
+  Cut,     ///< scissors or scalpel stroke
+  Bite,    ///< punch bite
+  Shave,   ///< shaver bite
+  Contour, ///< contouring pass of a shaver in contouring mode
 };
+
+/// What a running shaver does (6.4.3 / 6.4.4).
+enum class ShaverMode
+{
+  Remove, ///< bites the tissue in front of its window away
+  Contour ///< smooths the cut rim its window touches, removes nothing
+};
+
+/// "remove", "contour".
+THINTISSUEOPERATIONS_EXPORT const char* shaverModeName(ShaverMode mode);
+/// Throws InvalidInputError naming `name` and the valid names.
+THINTISSUEOPERATIONS_EXPORT ShaverMode shaverModeFromName(const std::string& name);
 
 /// What one step of an instrument did.
 struct InstrumentActionResult
 {
   OperationKind kind = OperationKind::None;
-  /// The cut, when one was made (kind != None).
+  /// The cut, when one was made (kind Cut, Bite or Shave).
   TissueCutReport report;
+  /// The contouring pass (kind Contour).
+  CutRimContourReport contour;
   /// Rest volume (mm^3) of the pieces this step removed, from their closed
   /// visual surfaces (0 when the cutter has no visual mesh or keeps its
   /// free pieces).
@@ -71,7 +91,14 @@ struct InstrumentActionResult
   /// Set when the cutter refused the blade (a tool that did not move, say):
   /// the tissue is untouched.
   std::string refused;
+  /// Whether the meshes were cut (their topology changed).
   bool changed() const { return kind != OperationKind::None && report.changed(); }
+  /// Whether a contouring pass moved cut-surface vertices (rest positions
+  /// and embedding; the topology is as it was).
+  bool contoured() const
+  {
+    return kind == OperationKind::Contour && !contour.movedVertices.empty();
+  }
 };
 
 struct InstrumentActionSettings
@@ -88,6 +115,12 @@ struct InstrumentActionSettings
   /// reaches (mm), and seconds between two bites.
   double shaverReach = 1.0;
   double shaverBitePeriod = 0.05;
+  /// Shavers: remove tissue or contour the cut rim; a contouring pass each
+  /// bite period reaches `shaverReach` beyond the window's outline around
+  /// its centre and takes this fraction of the jaggedness away where the
+  /// window's centre is (less toward the reach), in [0, 1].
+  ShaverMode shaverMode = ShaverMode::Remove;
+  double contourStrength = 0.3;
 };
 
 /// Whether an instrument of this type can change a tissue (all but the
@@ -118,6 +151,9 @@ public:
   /// The shaver's bite at `pose`: its window outline swept through the
   /// window's plane, `shaverReach` either side.
   Blade shaverBite(const RigidPose& pose) const;
+  /// The sphere a contouring shaver at `pose` smooths the cut rim in: its
+  /// window's centre, and the window's half diagonal plus `shaverReach`.
+  std::pair<Vector3, double> contourReach(const RigidPose& pose) const;
   /// The blade of the instrument going from `before` to `now`, whatever its
   /// jaws or buttons say (for VTK and tests): punch and shavers their bite
   /// at `now`, scissors what their blades closed over, the scalpel the

@@ -6,6 +6,7 @@
 #include "CuttingInvariants.h"
 #include "InstrumentAction.h"
 #include "MeniscusModel.h"
+#include "OperationTestHelpers.h"
 #include "ThinSheetModel.h"
 #include "ThinTissueError.h"
 #include "VisualCollisionBinding.h"
@@ -17,49 +18,10 @@
 
 using namespace thintissue;
 using namespace thintissue::cutting_test;
+using namespace thintissue::operations_test;
 
 namespace
 {
-
-struct BoundMeniscus
-{
-  MeniscusModel model = makeMeniscus(examinationMeniscusParameters());
-  VisualCollisionBinding binding = bindVisualToCollision(model.visual, model.collision);
-};
-
-const BoundMeniscus& boundMeniscus()
-{
-  static const BoundMeniscus meniscus;
-  return meniscus;
-}
-
-TissueCutterSettings handOverPieces()
-{
-  TissueCutterSettings settings;
-  settings.freePieces = FreePieceHandling::HandOver;
-  return settings;
-}
-
-/// A pose with the tool's working side `up` and its handle toward `handle`,
-/// placing tool point `local` at world point `at`.
-RigidPose poseAt(const Vector3& local, const Vector3& at, const Vector3& up, const Vector3& handle)
-{
-  ToolFrame frame;
-  frame.handleAxis = handle.normalized();
-  frame.up = (up - up.dot(frame.handleAxis) * frame.handleAxis).normalized();
-  RigidPose pose;
-  pose.rotation = frame.rotation();
-  pose.translation = at - pose.rotation * local;
-  return pose;
-}
-
-Vector3 centroid(const std::vector<Vector3>& points)
-{
-  Vector3 sum = Vector3::Zero();
-  for (const Vector3& p : points)
-    sum += p;
-  return sum / static_cast<double>(points.size());
-}
 
 /// The punch over the middle of the inner border: its jaws around the rim
 /// (fixed jaw below, opening upward), the shaft toward the meniscus's open
@@ -67,38 +29,7 @@ Vector3 centroid(const std::vector<Vector3>& points)
 RigidPose punchOverInnerBorder(const SurgicalInstrumentModel& punch, const MeniscusModel& model)
 {
   const MonitorCurve& curve = model.monitorCurves.front();
-  const std::size_t middle = curve.monitorPoints.size() / 2;
-  const Vector3 rim = curve.monitorPoints[middle];
-  Vector3 inward = curve.regionPoints[middle] - rim; // into the tissue
-  inward.z() = 0.0;
-  const Vector3 outline = centroid(punch.biteOutline);
-  return poseAt(outline, rim - Vector3(0, 0, 0.6), Vector3::UnitZ(), -inward);
-}
-
-/// Rest area of the collision triangles still in the tissue (mm^2).
-double activeArea(const TissueCutter& cutter)
-{
-  const auto& mesh = cutter.collision();
-  double area = 0.0;
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-  {
-    if (!cutter.isActive(static_cast<int>(t)))
-      continue;
-    const Triangle& tri = mesh.triangles()[t];
-    const auto& x = mesh.restPositions();
-    area += 0.5 * (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]).norm();
-  }
-  return area;
-}
-
-InstrumentCommand command(double time, const RigidPose& pose, double jaw, bool working = false)
-{
-  InstrumentCommand c;
-  c.time = time;
-  c.pose = pose;
-  c.jawOpening = jaw;
-  c.working = working;
-  return c;
+  return punchOverBorder(punch, curve, curve.monitorPoints.size() / 2);
 }
 
 } // namespace
