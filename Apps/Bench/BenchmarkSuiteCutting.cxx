@@ -5,7 +5,8 @@
 // solver's first step after the cut (new pattern and factor). Cases: the
 // thin sheet with the collision meshes of table 5-6, the medial meniscus,
 // the steak of table 5-2 (when ../shared/data holds it), and the counts of
-// vertices and elements over 6 consecutive cuts (fig. 5-17).
+// vertices and elements over 6 consecutive cuts (fig. 5-17); a contouring
+// pass over a jagged rim (6.4.4).
 //
 // With the visual mesh (table 5-4: the sheets of 881 to 53,633 visual
 // vertices on the 65-vertex collision mesh, and the 1M-triangle sheet): the visual cut, binding
@@ -23,6 +24,7 @@
 #include "VisualCollisionBinding.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 
@@ -159,6 +161,52 @@ void countConsecutiveCuts(const std::string& name,
   }
 }
 
+/// Thesis 6.4.4: a contouring pass over a jagged rim. The meniscus's inner
+/// border bitten at three places by a round bite 4 mm across (the pieces
+/// dropped), then the tool (a sphere of 3.4 mm, the small shaver's reach)
+/// held on each bitten rim in turn: the cost of one pass (issue target
+/// 0.5 ms), and the rim's roughness before and after 20 passes.
+void contourAndReport(int repetitions, BenchmarkReporter& reporter)
+{
+  const MeniscusModel meniscus = makeMeniscus();
+  const VisualCollisionBinding binding = bindVisualToCollision(meniscus.visual, meniscus.collision);
+  TissueCutterSettings settings;
+  settings.freePieces = FreePieceHandling::Drop;
+  settings.visual.jaggedAmplitude = 0.3;
+  TissueCutter cutter(binding, meniscus.simulation, nullptr, settings);
+  const MonitorCurve& border = meniscus.monitorCurves.front();
+  std::vector<Vector3> bitten;
+  for (const double at : { 0.3, 0.5, 0.7 })
+  {
+    const Vector3 centre =
+      border.monitorPoints[static_cast<std::size_t>(at * (border.monitorPoints.size() - 1))];
+    std::vector<Vector3> low, high;
+    for (int i = 0; i < 24; ++i)
+    {
+      const double angle = 2.0 * M_PI * i / 24.0;
+      const Vector3 p = centre + 2.0 * Vector3(std::cos(angle), std::sin(angle), 0.0);
+      low.push_back(p - Vector3(0, 0, 10));
+      high.push_back(p + Vector3(0, 0, 10));
+    }
+    cutter.cut(Blade::sweptOutline(low, high));
+    bitten.push_back(centre);
+  }
+  const double before = cutter.cutRimRoughness().rootMeanSquare;
+  std::vector<double> times;
+  std::size_t moved = 0;
+  for (int pass = 0; pass < std::max(20, repetitions); ++pass)
+  {
+    const auto report = cutter.contour(bitten[pass % bitten.size()], 3.4, 0.3);
+    times.push_back(report.milliseconds);
+    moved = std::max(moved, report.movedVertices.size());
+  }
+  const std::string what = "medial meniscus, 3 jagged bites, contouring pass (" +
+                           std::to_string(moved) + " cut-surface vertices moved)";
+  reporter.report(what, "contouring pass (6.4.4)", median(times), "ms");
+  reporter.report(what, "rim roughness before", before, "mm");
+  reporter.report(what, "rim roughness after", cutter.cutRimRoughness().rootMeanSquare, "mm");
+}
+
 } // namespace
 
 THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
@@ -215,6 +263,7 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
   const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
   countConsecutiveCuts(
     "thin sheet, collision model 1", sheet.collision, sheet.simulation, reporter);
+  contourAndReport(repetitions, reporter);
   if (context.quick)
   {
     return;

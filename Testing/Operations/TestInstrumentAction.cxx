@@ -261,3 +261,69 @@ TEST(InstrumentAction, BadSettingsAreRefusedByName)
   noOutline.biteOutline.clear();
   EXPECT_THROW(InstrumentAction{ noOutline }, InvalidInputError);
 }
+
+// 6.4.4: after a bite with a jagged cut surface, the small shaver in
+// contouring mode held on the bitten rim smooths it pass by pass (one pass
+// per bite period while the motor runs) and removes nothing.
+TEST(InstrumentAction, TheShaverInContouringModeSmoothsTheBittenRimAndRemovesNothing)
+{
+  const BoundMeniscus& m = boundMeniscus();
+  TissueCutterSettings settings = handOverPieces();
+  settings.visual.jaggedAmplitude = 0.3;
+  settings.visual.jaggedSeed = 5u;
+  TissueCutter cutter(m.binding, m.model.simulation, nullptr, settings);
+  InstrumentAction punch(makeSurgicalInstrument(SurgicalInstrumentType::Punch));
+  const RigidPose bite = punchOverInnerBorder(punch.instrument(), m.model);
+  punch.apply(cutter, command(0.0, bite, 1.0));
+  ASSERT_TRUE(punch.apply(cutter, command(0.1, bite, 0.0)).changed());
+  const double jagged = cutter.cutRimRoughness().rootMeanSquare;
+  EXPECT_GT(jagged, 0.03);
+
+  InstrumentActionSettings contouring;
+  contouring.shaverMode = ShaverMode::Contour;
+  InstrumentAction shaver(makeSurgicalInstrument(SurgicalInstrumentType::SmallShaver), contouring);
+  // The window's centre where the punch bit, 0.6 mm up (the rim's middle).
+  const Vector3 bitten = bite * centroid(punch.instrument().biteOutline) + Vector3(0, 0, 0.6);
+  const RigidPose pose = poseAt(
+    centroid(shaver.instrument().biteOutline), bitten, -Vector3::UnitZ(), Vector3(1.0, 0.2, 0.0));
+  const double area = activeArea(cutter);
+  const std::size_t triangles = cutter.visual().mesh().triangleCount();
+  // Motor off: nothing.
+  shaver.apply(cutter, command(0.0, pose, 1.0, false));
+  EXPECT_EQ(shaver.apply(cutter, command(0.1, pose, 1.0, false)).kind, OperationKind::None);
+  EXPECT_EQ(cutter.cutRimRoughness().rootMeanSquare, jagged);
+  int passes = 0;
+  for (double t = 0.2; t < 1.2; t += 0.01)
+  {
+    const InstrumentActionResult pass = shaver.apply(cutter, command(t, pose, 1.0, true));
+    EXPECT_FALSE(pass.changed());
+    EXPECT_EQ(pass.removedVolume, 0.0);
+    passes += pass.contoured();
+  }
+  EXPECT_GE(passes, 15); // one per 50 ms
+  EXPECT_LE(passes, 21);
+  EXPECT_LT(cutter.cutRimRoughness().rootMeanSquare, 0.7 * jagged);
+  EXPECT_EQ(activeArea(cutter), area);
+  EXPECT_EQ(cutter.visual().mesh().triangleCount(), triangles);
+  EXPECT_TRUE(cutterIsConsistent(cutter, m.model.simulation));
+}
+
+TEST(InstrumentAction, ShaverModesHaveNames)
+{
+  EXPECT_EQ(shaverModeFromName("contour"), ShaverMode::Contour);
+  EXPECT_EQ(shaverModeFromName(shaverModeName(ShaverMode::Remove)), ShaverMode::Remove);
+  try
+  {
+    shaverModeFromName("polish");
+    FAIL() << "accepted an unknown shaver mode";
+  }
+  catch (const InvalidInputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("polish"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("contour"), std::string::npos) << e.what();
+  }
+  InstrumentActionSettings bad;
+  bad.contourStrength = 1.5;
+  EXPECT_THROW(InstrumentAction(makeSurgicalInstrument(SurgicalInstrumentType::SmallShaver), bad),
+    InvalidInputError);
+}
