@@ -16,21 +16,26 @@
 namespace thintissue::testing
 {
 
-/// The longitudinally torn meniscus (bucket handle), bound.
-struct TornMeniscus
+/// The meniscus (with a tear of `tear` type), bound.
+struct BoundMeniscusModel
 {
-  MeniscusModel model = makeMeniscus(
-    []
-    {
-      MeniscusParameters p;
-      p.tear = defaultMeniscusTear(MeniscusTearType::Longitudinal);
-      return p;
-    }());
-  VisualCollisionBinding binding = bindVisualToCollision(model.visual, model.collision);
+  explicit BoundMeniscusModel(MeniscusTearType tear)
+    : model(makeMeniscus(
+        [tear]
+        {
+          MeniscusParameters p;
+          p.tear = defaultMeniscusTear(tear);
+          return p;
+        }()))
+    , binding(bindVisualToCollision(model.visual, model.collision))
+  {
+  }
+  MeniscusModel model;
+  VisualCollisionBinding binding;
 };
 
 /// A cutter whose free pieces drop out, its cut surface jagged.
-inline TissueCutter jaggedCutter(const TornMeniscus& m, double amplitude)
+inline TissueCutter jaggedCutter(const BoundMeniscusModel& m, double amplitude)
 {
   TissueCutterSettings settings;
   settings.freePieces = FreePieceHandling::Drop;
@@ -39,15 +44,19 @@ inline TissueCutter jaggedCutter(const TornMeniscus& m, double amplitude)
   return TissueCutter(m.binding, m.model.simulation, nullptr, settings);
 }
 
-/// The punch bites `count` times along the inner border, from 35 % to 65 %
-/// of it, each 1 mm into the tissue.
-inline void punchAlongTheBorder(TissueCutter& cutter, const MeniscusModel& model, int count)
+/// The punch bites `count` times along the inner border, from fraction
+/// `from` to `to` of it, each 1 mm into the tissue.
+inline void punchAlongTheBorder(TissueCutter& cutter,
+  const MeniscusModel& model,
+  int count,
+  double from = 0.35,
+  double to = 0.65)
 {
   const MonitorCurve& border = model.monitorCurves.front();
   for (int k = 0; k < count; ++k)
   {
     InstrumentAction punch(makeSurgicalInstrument(SurgicalInstrumentType::Punch));
-    const double at = 0.35 + 0.3 * k / std::max(1, count - 1);
+    const double at = from + (to - from) * k / std::max(1, count - 1);
     const auto i = static_cast<std::size_t>(at * (border.monitorPoints.size() - 1));
     const RigidPose pose = operations_test::punchOverBorder(punch.instrument(), border, i, 1.0);
     punch.apply(cutter, operations_test::command(0.0, pose, 1.0));

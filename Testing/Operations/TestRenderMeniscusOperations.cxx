@@ -37,7 +37,7 @@ void shaveAlongTheBorder(TissueCutter& cutter, const MeniscusModel& model, int c
 
 int main(int argc, char* argv[])
 {
-  const TornMeniscus m;
+  const BoundMeniscusModel m(MeniscusTearType::Longitudinal);
   TissueCutter punched = jaggedCutter(m, 0.25);
   punchAlongTheBorder(punched, m.model, 5);
   TissueCutter shaved = jaggedCutter(m, 0.0);
@@ -48,7 +48,7 @@ int main(int argc, char* argv[])
   Vector3 into = border.regionPoints[middle] - border.monitorPoints[middle];
   into.z() = 0.0;
   const Vector3 focus = border.monitorPoints[middle] + 2.0 * into.normalized();
-  const Vector3 from = focus - 26.0 * into.normalized() + Vector3(0.0, 0.0, 22.0);
+  const Vector3 from = focus - 34.0 * into.normalized() + Vector3(0.0, 0.0, 40.0);
   auto window = makeSceneWindow(800, 400);
   window->AddRenderer(viewport(remainingTissueActor(punched), { 0.0, 0.0, 0.5, 1.0 }, focus, from));
   window->AddRenderer(viewport(remainingTissueActor(shaved), { 0.5, 0.0, 1.0, 1.0 }, focus, from));
