@@ -1495,16 +1495,7 @@ TriangleMesh closeShadowTunnels(const TriangleMesh& visual, TunnelClosingReport&
   }
   // The openings run over the rim where a tunnel perforates it: any length
   // is filled; islands left between neighbouring tunnels go.
-  MeshRepairSettings settings;
-  settings.maximumListedPerKind = 0;
-  settings.maximumHoleFraction = 2.0;
-  settings.maximumHoleEdges = 2000;
-  TriangleMesh closed = repairTriangleMesh(cut, settings);
-  if (countPieces(closed) > 1)
-  {
-    closed = std::move(splitIntoPieces(closed).front().mesh);
-    closed.name = visual.name;
-  }
+  const TriangleMesh closed = closeOpeningsKeepLargest(cut);
   const MeshValidationReport validation = validateTriangleMesh(closed);
   const int genus = validation.isClosedOutwardSingleSurface()
                       ? TriangleMeshAdjacency(closed).closedSurfaceGenus()

@@ -270,16 +270,8 @@ TriangleMesh cutAndFill(const TriangleMesh& mesh, const std::vector<char>& cut)
     if (mesh.hasTextureCoordinates())
       kept.textureCorners.push_back(mesh.textureCorners[t]);
   }
-  MeshRepairSettings settings;
-  settings.maximumListedPerKind = 0;
-  settings.maximumHoleFraction = 2.0;
-  settings.maximumHoleEdges = 2000;
-  TriangleMesh closed = repairTriangleMesh(kept, settings);
-  if (countPieces(closed) > 1)
-  {
-    closed = std::move(splitIntoPieces(closed).front().mesh);
-  }
-  closed.name = mesh.name;
+  kept.name = mesh.name;
+  TriangleMesh closed = closeOpeningsKeepLargest(kept);
   if (!validateTriangleMesh(closed).isClosedOutwardSingleSurface())
     return {};
   return closed;

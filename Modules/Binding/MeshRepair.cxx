@@ -1,5 +1,7 @@
 #include "MeshRepair.h"
 
+#include "MeshPieces.h"
+
 #include "ThinTissueError.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -1043,6 +1045,19 @@ TriangleMesh repairTriangleMesh(const TriangleMesh& mesh,
   // Nothing changed: hand back the input itself, not an equal copy made
   // through CGAL (vertex order and first corners are then certainly kept).
   return out.changed() ? repaired.mesh : mesh;
+}
+
+TriangleMesh closeOpeningsKeepLargest(const TriangleMesh& mesh)
+{
+  MeshRepairSettings settings;
+  settings.maximumListedPerKind = 0;
+  settings.maximumHoleFraction = 2.0;
+  settings.maximumHoleEdges = 2000;
+  TriangleMesh closed = repairTriangleMesh(mesh, settings);
+  if (countPieces(closed) > 1)
+    closed = std::move(splitIntoPieces(closed).front().mesh);
+  closed.name = mesh.name;
+  return closed;
 }
 
 } // namespace thintissue

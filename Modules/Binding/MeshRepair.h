@@ -95,6 +95,11 @@ THINTISSUEBINDING_EXPORT TriangleMesh repairTriangleMesh(const TriangleMesh& mes
   const MeshRepairSettings& settings = {},
   MeshRepairReport* report = nullptr);
 
+/// A surface with openings cut into it closed again: every hole filled,
+/// whatever its length, and only the largest piece kept (islands left
+/// between neighbouring openings go); named as `mesh`.
+THINTISSUEBINDING_EXPORT TriangleMesh closeOpeningsKeepLargest(const TriangleMesh& mesh);
+
 } // namespace thintissue
 
 #endif
