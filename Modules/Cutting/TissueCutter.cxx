@@ -445,7 +445,9 @@ TissueCutReport TissueCutter::cut(const Blade& blade)
     report.reembeddedVisualVertices = reembedVisual(report);
     report.visualEmbeddingMilliseconds = millisecondsSince(reembedStart);
   }
+  const auto removalStart = Clock::now();
   handleFreePieces(report);
+  report.removalMilliseconds = millisecondsSince(removalStart);
   report.totalMilliseconds = millisecondsSince(start);
   return report;
 }

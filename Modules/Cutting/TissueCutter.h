@@ -96,6 +96,9 @@ struct TissueCutReport
   /// re-embedding (5.3.5).
   double visualMilliseconds = 0.0;
   double visualEmbeddingMilliseconds = 0.0;
+  /// Free pieces and fragments removed or handed over (6.4.2: a bite's
+  /// piece goes at once).
+  double removalMilliseconds = 0.0;
   double totalMilliseconds = 0.0;
   bool changed() const { return collision.changed(); }
 };

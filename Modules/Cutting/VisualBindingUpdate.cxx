@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <numeric>
 
@@ -657,7 +658,11 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   finishEdgePoints(context);
   openVisualMesh(collision, context);
   updateEdgePaths(collision, context);
+  const auto cutSurfaceStart = std::chrono::steady_clock::now();
   updateCutSurface(collision, context);
+  result.cutSurfaceMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cutSurfaceStart)
+      .count();
   compactTriangles();
   auto sorted = [](std::vector<int> list)
   {

@@ -97,6 +97,8 @@ struct VisualCutResult
   std::vector<int> reboundVertices;
   /// Triangles rewritten or added, ascending.
   std::vector<int> changedTriangles;
+  /// Milliseconds of the cut surface's update (5.3.4), part of the cut.
+  double cutSurfaceMilliseconds = 0.0;
   bool changed() const { return !changedTriangles.empty(); }
 };
 
