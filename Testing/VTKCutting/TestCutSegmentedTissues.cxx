@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace
@@ -90,7 +91,13 @@ INSTANTIATE_TEST_SUITE_P(Tears,
   ::testing::Values(MeniscusTearType::None,
     MeniscusTearType::Longitudinal,
     MeniscusTearType::Radial,
-    MeniscusTearType::Flap));
+    MeniscusTearType::Flap),
+  [](const ::testing::TestParamInfo<MeniscusTearType>& info)
+  {
+    std::string name = thintissue::meniscusTearTypeName(info.param);
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+  });
 
 // The medial and lateral menisci segmented from MRI (Smith 2019), in metres,
 // prepared as ThinTissuePrepare does, cut at random.
