@@ -631,7 +631,8 @@ void HexahedralEmbedding::locatePoints(const std::vector<Vector3>& points,
   const std::vector<int>& targets,
   const HexahedralMesh& mesh,
   const std::vector<int>& candidateHexahedra,
-  const HexahedralEmbeddingSettings& settings)
+  const HexahedralEmbeddingSettings& settings,
+  const std::vector<int>& firstTry)
 {
   for (std::size_t i = 0; i < points.size(); ++i)
   {
@@ -646,23 +647,47 @@ void HexahedralEmbedding::locatePoints(const std::vector<Vector3>& points,
     throw InvalidInputError("embedding in " + meshContext(mesh) +
                             ": tolerance and maximum extrapolation must be non-negative");
   }
+  auto targetOf = [&](std::size_t i)
+  { return targets.empty() ? i : static_cast<std::size_t>(targets[i]); };
+  // Points inside their first try are placed at once; the rest searched.
+  std::vector<std::size_t> searched;
+  searched.reserve(firstTry.empty() ? points.size() : 0);
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    Vector3 local;
+    const int first = firstTry.empty() ? -1 : firstTry[i];
+    if (first >= 0 && invertTrilinearMap(hexahedronCorners(mesh, first), points[i], local) &&
+        isInsideUnitCube(local, settings.insideTolerance))
+    {
+      HexahedronOfPoint[targetOf(i)] = first;
+      LocalCoordinates[targetOf(i)] = local;
+    }
+    else
+      searched.push_back(i);
+  }
+  OutsidePoints = 0;
+  ClampedPoints = 0;
+  if (searched.empty())
+  {
+    return;
+  }
   HexahedronLocator index;
   index.build(mesh, candidateHexahedra);
   std::atomic<std::size_t> outside{ 0 };
   std::atomic<std::size_t> clamped{ 0 };
-  forRange(points.size(),
+  forRange(searched.size(),
     1024,
     256,
     [&](std::size_t begin, std::size_t end)
     {
       std::size_t localOutside = 0;
       std::size_t localClamped = 0;
-      for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t k = begin; k < end; ++k)
       {
+        const std::size_t i = searched[k];
         const HexahedronLocation location = index.locate(points[i], settings);
-        const std::size_t target = targets.empty() ? i : static_cast<std::size_t>(targets[i]);
-        HexahedronOfPoint[target] = location.hexahedron;
-        LocalCoordinates[target] = location.localCoordinates;
+        HexahedronOfPoint[targetOf(i)] = location.hexahedron;
+        LocalCoordinates[targetOf(i)] = location.localCoordinates;
         localOutside += location.inside ? 0 : 1;
         localClamped += location.clamped ? 1 : 0;
       }
@@ -947,6 +972,30 @@ std::size_t HexahedralEmbedding::appendPoints(const std::vector<Vector3>& restPo
   const std::vector<int>& candidateHexahedra,
   const HexahedralEmbeddingSettings& settings)
 {
+  return this->appendPoints(restPositions, {}, mesh, candidateHexahedra, settings);
+}
+
+std::size_t HexahedralEmbedding::appendPoints(const std::vector<Vector3>& restPositions,
+  const std::vector<int>& firstTry,
+  const HexahedralMesh& mesh,
+  const std::vector<int>& candidateHexahedra,
+  const HexahedralEmbeddingSettings& settings)
+{
+  if (!firstTry.empty() && firstTry.size() != restPositions.size())
+  {
+    throw InvalidInputError("embedding in " + meshContext(mesh) + ": " +
+                            std::to_string(firstTry.size()) + " first tries for " +
+                            std::to_string(restPositions.size()) + " points to append");
+  }
+  for (const int h : firstTry)
+  {
+    if (h >= static_cast<int>(mesh.hexahedronCount()))
+    {
+      throw InvalidInputError("embedding in " + meshContext(mesh) + ": first try " +
+                              std::to_string(h) + " out of range (" +
+                              std::to_string(mesh.hexahedronCount()) + " hexahedra)");
+    }
+  }
   const std::size_t first = this->pointCount();
   if (restPositions.empty())
   {
@@ -962,7 +1011,7 @@ std::size_t HexahedralEmbedding::appendPoints(const std::vector<Vector3>& restPo
   LocalCoordinates.resize(first + restPositions.size(), Vector3::Zero());
   try
   {
-    this->locatePoints(restPositions, targets, mesh, candidateHexahedra, settings);
+    this->locatePoints(restPositions, targets, mesh, candidateHexahedra, settings, firstTry);
   }
   catch (...)
   {

@@ -209,6 +209,15 @@ public:
     const HexahedralMesh& mesh,
     const std::vector<int>& candidateHexahedra = {},
     const HexahedralEmbeddingSettings& settings = {});
+  /// Same, trying first for each point the hexahedron `firstTry[i]` (-1:
+  /// none; e.g. the cut copy holding the point's collision triangle): a
+  /// point inside it costs one inversion, and the search structure is built
+  /// over the candidates only for the points outside their first try.
+  std::size_t appendPoints(const std::vector<Vector3>& restPositions,
+    const std::vector<int>& firstTry,
+    const HexahedralMesh& mesh,
+    const std::vector<int>& candidateHexahedra,
+    const HexahedralEmbeddingSettings& settings = {});
   /// Room for `pointCount` points without reallocating (appendPoints on a
   /// cut would otherwise copy every point's coordinates once in a while).
   void reserve(std::size_t pointCount)
@@ -226,7 +235,8 @@ private:
     const std::vector<int>& targets,
     const HexahedralMesh& mesh,
     const std::vector<int>& candidateHexahedra,
-    const HexahedralEmbeddingSettings& settings);
+    const HexahedralEmbeddingSettings& settings,
+    const std::vector<int>& firstTry = {});
   void checkPointIndex(std::size_t point, const char* operation) const;
 
   std::vector<int> HexahedronOfPoint;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 namespace thintissue
 {
@@ -343,18 +344,37 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
   const auto& rest = Visual.mesh().positions;
   if (static_cast<int>(rest.size()) > firstNew)
   {
+    // Each new vertex tried first in the copy holding its collision
+    // triangle whose centre is nearest (most are inside it: one inversion,
+    // no search structure), the others searched among all those copies.
     std::vector<int> candidates;
+    std::vector<int> firstTry;
+    firstTry.reserve(rest.size() - firstNew);
     for (int v = firstNew; v < static_cast<int>(rest.size()); ++v)
     {
       const int t = Visual.collisionTriangleOf(v, Collision);
-      if (t >= 0)
-        candidates.insert(
-          candidates.end(), Branches.hexahedraOf(t).begin(), Branches.hexahedraOf(t).end());
+      int nearest = -1;
+      double nearestDistance = std::numeric_limits<double>::infinity();
+      static const std::vector<int> none;
+      for (const int h : t >= 0 ? Branches.hexahedraOf(t) : none)
+      {
+        candidates.push_back(h);
+        Vector3 centre = Vector3::Zero();
+        for (const int node : Simulation.hexahedra[h])
+          centre += Simulation.nodes[node];
+        const double distance = (centre / 8.0 - rest[v]).squaredNorm();
+        if (distance < nearestDistance)
+        {
+          nearest = h;
+          nearestDistance = distance;
+        }
+      }
+      firstTry.push_back(nearest);
     }
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     VisualEmbedding.appendPoints(
-      std::vector<Vector3>(rest.begin() + firstNew, rest.end()), Simulation, candidates);
+      std::vector<Vector3>(rest.begin() + firstNew, rest.end()), firstTry, Simulation, candidates);
     for (int v = firstNew; v < static_cast<int>(rest.size()); ++v)
       VisualOfHexahedron[Branches.originalOf(VisualEmbedding.hexahedron(v))].push_back(v);
   }
