@@ -2,7 +2,9 @@
 // voxelized at MRI-like spacing, blurred, iso-surfaced, a little noise) with
 // the collision mid-surface generated from them (orange) and a sphere of
 // its radius at every collision vertex (blue): left the medial meniscus at
-// 0.3 x 0.3 x 0.9 mm, right the tibial cartilage at 0.4 x 0.4 x 0.8 mm.
+// 0.3 x 0.3 x 0.9 mm, middle the curved posterior cruciate ligament at
+// 0.35 x 0.35 x 0.7 mm (a band: its thickness direction turns along it),
+// right the tibial cartilage at 0.4 x 0.4 x 0.8 mm.
 #include "ThinTissueImageTest.h"
 #include "TissueModelScene.h"
 #include "vtkCollisionMidSurfaceFilter.h"
@@ -66,7 +68,7 @@ bool addSegmentedTissue(vtkRenderer* renderer,
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   actor->GetProperty()->SetColor(0.2, 0.45, 1.0);
-  actor->GetProperty()->SetOpacity(0.5);
+  actor->GetProperty()->SetOpacity(0.3);
   renderer->AddActor(actor);
   return true;
 }
@@ -77,25 +79,36 @@ int main(int argc, char* argv[])
 {
   vtkNew<vtkMeniscusSource> meniscus;
   vtkNew<vtkRenderer> left;
-  left->SetViewport(0.0, 0.0, 0.5, 1.0);
+  left->SetViewport(0.0, 0.0, 1.0 / 3.0, 1.0);
   if (!addSegmentedTissue(left, meniscus->GetOutputPort(0), 0.3, 0.9, 105))
   {
     return 1;
   }
   thintissue::testing::viewFrom(left, 0.3, -0.8, 0.9, 0.0, 0.0, 1.0, 1.25);
 
+  vtkNew<vtkKneeTissueSource> ligament;
+  ligament->SetTissue(vtkKneeTissueSource::PosteriorCruciateLigament);
+  vtkNew<vtkRenderer> middle;
+  middle->SetViewport(1.0 / 3.0, 0.0, 2.0 / 3.0, 1.0);
+  if (!addSegmentedTissue(middle, ligament->GetOutputPort(0), 0.35, 0.7, 85))
+  {
+    return 1;
+  }
+  thintissue::testing::viewFrom(middle, 0.2, -1.0, 0.3, 0.0, 0.0, 1.0, 0.95);
+
   vtkNew<vtkKneeTissueSource> cartilage;
   cartilage->SetTissue(vtkKneeTissueSource::TibialCartilage);
   vtkNew<vtkRenderer> right;
-  right->SetViewport(0.5, 0.0, 1.0, 1.0);
+  right->SetViewport(2.0 / 3.0, 0.0, 1.0, 1.0);
   if (!addSegmentedTissue(right, cartilage->GetOutputPort(0), 0.4, 0.8, 85))
   {
     return 1;
   }
   thintissue::testing::viewFrom(right, 0.1, -0.5, 1.0, 0.0, 0.0, 1.0, 1.1);
 
-  auto window = thintissue::testing::makeSceneWindow(800, 400);
+  auto window = thintissue::testing::makeSceneWindow(1200, 400);
   window->AddRenderer(left);
+  window->AddRenderer(middle);
   window->AddRenderer(right);
   return thintissue::testing::compareWithBaseline(argc, argv, window);
 }
