@@ -426,7 +426,8 @@ void addEdgePointCandidates(const TriangleMesh& visual,
 
 /// The claim of border collision vertex v on the visual rim (5.2.1): its
 /// candidates, closest first. Returns why it has none within reach, or an
-/// empty text.
+/// empty text. `reach`: `thinnessFactor` radii, or up to twice that within
+/// half the vertex's mean collision edge (see pairCollisionVertices).
 std::string claimRimPoint(const TriangleMesh& visual,
   const TriangleMeshAdjacency& visualAdjacency,
   const TriangleBvh& visualBvh,
@@ -434,6 +435,7 @@ std::string claimRimPoint(const TriangleMesh& visual,
   const Vector3& origin,
   const Vector3& outwardSum,
   double reach,
+  double radius,
   double thinnessFactor,
   PairingClaim& claim)
 {
@@ -498,8 +500,9 @@ std::string claimRimPoint(const TriangleMesh& visual,
            std::to_string(v) + ": its rim point is " + std::to_string(away) +
            " away (outward across the border " + std::to_string((target - origin).norm()) +
            ", then " + std::to_string(claim.candidates.front().first) +
-           " to the closest visual vertex), more than " + std::to_string(thinnessFactor) +
-           " radii of " + std::to_string(reach / thinnessFactor);
+           " to the closest visual vertex), more than " + std::to_string(reach) + " (" +
+           std::to_string(thinnessFactor) + " radii of " + std::to_string(radius) +
+           ", or up to twice that within half its mean collision edge)";
   }
   return {};
 }
@@ -562,6 +565,29 @@ std::vector<double> snapDistances(const TriangleMesh& collision, const Collision
     snapDistance[edge[1]] = std::min(snapDistance[edge[1]], length);
   }
   return snapDistance;
+}
+
+/// Half the mean length of the collision edges at each vertex.
+std::vector<double> halfMeanEdgeLengths(const TriangleMesh& collision,
+  const CollisionTopology& topology)
+{
+  const std::size_t n = collision.vertexCount();
+  std::vector<double> sum(n, 0.0);
+  std::vector<int> count(n, 0);
+  for (const auto& edge : topology.edges)
+  {
+    const double length = (collision.positions[edge[0]] - collision.positions[edge[1]]).norm();
+    for (const int v : edge)
+    {
+      sum[v] += length;
+      ++count[v];
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    sum[v] = count[v] > 0 ? 0.5 * sum[v] / count[v] : 0.0;
+  }
+  return sum;
 }
 
 /// The claims resolved: no visual vertex serves two collision vertices, the
@@ -658,6 +684,7 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
   const std::size_t n = collision.vertexCount();
   const std::vector<Vector3> outward = outwardDirections(collision, topology);
   const std::vector<double> snapDistance = snapDistances(collision, topology);
+  const std::vector<double> halfMeanEdge = halfMeanEdgeLengths(collision, topology);
   std::vector<PairingClaim> claims(2 * n);
   std::vector<std::string> errors(2 * n);
   tbb::parallel_for(std::size_t(0),
@@ -670,7 +697,16 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
       claim.collisionVertex = v;
       claim.slot = slot;
       const Vector3& origin = collision.positions[v];
-      const double reach = settings.thinnessFactor * radii[v];
+      // A wedge-shaped rim (a meniscus's inner rim or a tear's lip,
+      // sharpened by a segmentation) thins slower than a quarter of a
+      // radius per unit outward: a border vertex sits where the tissue
+      // still has a radius and its rim lies more than 4 radii beyond it,
+      // and the normal of a vertex beside it crosses the wedge obliquely.
+      // Both still belong to the vertex while nearer than half way to its
+      // neighbours (half its mean collision edge), up to twice the
+      // thinness factor: radii far too small are still refused.
+      const double thinReach = settings.thinnessFactor * radii[v];
+      const double reach = std::max(thinReach, std::min(halfMeanEdge[v], 2.0 * thinReach));
       if (topology.borderVertex[v])
       {
         if (slot == 1)
@@ -684,6 +720,7 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
           origin,
           outward[v],
           reach,
+          radii[v],
           settings.thinnessFactor,
           claim);
         return;
@@ -708,7 +745,8 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         errors[c] = nameOf(visual, "visual") + " is not thin at collision vertex " +
                     std::to_string(v) + ": along its " + (slot == 0 ? "positive" : "negative") +
                     " normal the surface is " + std::to_string(distance) + " away, more than " +
-                    std::to_string(settings.thinnessFactor) + " radii";
+                    std::to_string(reach) + " (" + std::to_string(settings.thinnessFactor) +
+                    " radii, or up to twice that within half its mean collision edge)";
         return;
       }
       const Triangle& hit = visual.triangles[triangle];
