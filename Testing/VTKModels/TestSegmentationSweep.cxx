@@ -8,7 +8,8 @@
 // but one of the longitudinal tear's (its strips are narrower than the
 // lattice: open in issue 14); THINTISSUE_SWEEP_CASES=25 runs the issue's
 // 200 cases, every one required (measured rates in
-// Documentation/Architecture.md).
+// Documentation/Architecture.md); THINTISSUE_SWEEP_COARSE draws coarse
+// spacings instead (0.5-0.8 mm in-plane, 1.0-1.5 mm slices).
 #include "vtkSimulatedSegmentationFilter.h"
 
 #include "BindingInvariants.h"
