@@ -25,16 +25,10 @@
 namespace thintissue::testing
 {
 
-inline void checkBinding(const TriangleMesh& original,
-  const TriangleMesh& collision,
-  const VisualCollisionBinding& b)
+/// The re-meshed surface is the original one: closed, oriented, same area
+/// and volume; original vertices kept, new vertices on the original surface.
+inline void expectSameSurface(const TriangleMesh& original, const TriangleMesh& mesh)
 {
-  const TriangleMesh& mesh = b.visual;
-  ASSERT_EQ(b.vertices.size(), mesh.vertexCount());
-  ASSERT_EQ(b.triangleRegion.size(), mesh.triangleCount());
-
-  // The surface is the original one: closed, oriented, same area and
-  // volume; original vertices kept, new vertices on the original surface.
   const MeshValidationReport report = validateTriangleMesh(mesh);
   EXPECT_TRUE(report.isClosedOutwardSingleSurface()) << report.toString();
   EXPECT_NEAR(mesh.surfaceArea(), original.surfaceArea(), 1e-9 * original.surfaceArea());
@@ -57,6 +51,18 @@ inline void checkBinding(const TriangleMesh& original,
     farthest = std::max(farthest, distanceToSurface(original, originalBvh, mesh.positions[v]));
   }
   EXPECT_LT(farthest, 1e-9 * scale);
+}
+
+inline void checkBinding(const TriangleMesh& original,
+  const TriangleMesh& collision,
+  const VisualCollisionBinding& b)
+{
+  const TriangleMesh& mesh = b.visual;
+  ASSERT_EQ(b.vertices.size(), mesh.vertexCount());
+  ASSERT_EQ(b.triangleRegion.size(), mesh.triangleCount());
+
+  expectSameSurface(original, mesh);
+  const double scale = original.boundingBox().diagonal().norm();
 
   // Every visual vertex bound once, its parameters a point of its
   // collision element.
