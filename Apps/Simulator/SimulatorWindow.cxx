@@ -328,6 +328,14 @@ void SimulatorWindow::showMetrics()
                      .arg(Shown.wrinkling ? "<b>wrinkling</b>" : "")
                      .arg(m.operations)
                      .arg(m.removedVolume, 0, 'f', 1));
+  if (m.contourPasses > 0 || m.rimRoughnessAtStart > 0.0)
+  {
+    // Contouring (6.4.4): how even the rim is now against the start.
+    Metrics->setText(Metrics->text() + QString("<br>rim roughness %1 mm (start %2 mm), %3 passes")
+                                         .arg(m.rimRoughness, 0, 'f', 3)
+                                         .arg(m.rimRoughnessAtStart, 0, 'f', 3)
+                                         .arg(m.contourPasses));
+  }
 }
 
 } // namespace thintissue

@@ -121,6 +121,21 @@ public:
     return v;
   }
 
+  /// A whole number in [lowest, highest].
+  double whole(const std::string& key,
+    double fallback,
+    double lowest,
+    double highest,
+    const std::string& what) const
+  {
+    const double x = number(key, fallback, false);
+    if (x != std::floor(x) || x < lowest || x > highest)
+    {
+      fail(key, "must be " + what);
+    }
+    return x;
+  }
+
   template <typename Parse>
   auto named(const std::string& key, const std::string& fallback, Parse parse) const
   {
@@ -235,16 +250,68 @@ void readWrinkleParameters(const ScenarioReader& r, ScenarioDescription& s)
 
 void readCutting(const ScenarioReader& r, ScenarioDescription& s)
 {
-  const double rows = r.number("cutting.cutSurfaceRows", s.cutSurfaceRows, false);
-  if (rows != std::floor(rows) || rows < 0.0 || rows > 8.0)
-  {
-    r.fail("cutting.cutSurfaceRows", "must be a whole number from 0 to 8");
-  }
-  s.cutSurfaceRows = static_cast<int>(rows);
+  s.cutSurfaceRows = static_cast<int>(
+    r.whole("cutting.cutSurfaceRows", s.cutSurfaceRows, 0.0, 8.0, "a whole number from 0 to 8"));
   s.fragmentAreaFraction = r.number("cutting.fragmentAreaFraction", s.fragmentAreaFraction, false);
   if (s.fragmentAreaFraction < 0.0 || s.fragmentAreaFraction >= 1.0)
   {
     r.fail("cutting.fragmentAreaFraction", "must lie in [0, 1)");
+  }
+  s.jaggedAmplitude = r.number("cutting.jagged.amplitude", s.jaggedAmplitude, false);
+  if (s.jaggedAmplitude < 0.0 || s.jaggedAmplitude > 2.0)
+  {
+    r.fail("cutting.jagged.amplitude", "must lie in [0, 2] mm");
+  }
+  if (s.jaggedAmplitude > 0.0 && s.cutSurfaceRows < 1)
+  {
+    r.fail("cutting.jagged.amplitude", "a jagged cut surface needs cutting.cutSurfaceRows >= 1");
+  }
+  s.jaggedWavelength = r.number("cutting.jagged.wavelength", s.jaggedWavelength);
+  s.jaggedSeed = static_cast<unsigned>(
+    r.whole("cutting.jagged.seed", s.jaggedSeed, 0.0, 4294967295.0, "a whole number >= 0"));
+}
+
+void readShaver(const ScenarioReader& r, ScenarioDescription& s)
+{
+  const bool shaver = s.instrument == SurgicalInstrumentType::SmallShaver ||
+                      s.instrument == SurgicalInstrumentType::LargeShaver;
+  if (!shaver && (r.find("instrument.shaverMode") || r.find("instrument.contourStrength")))
+  {
+    r.fail(r.find("instrument.shaverMode") ? "instrument.shaverMode" : "instrument.contourStrength",
+      "only a shaver has a mode");
+  }
+  s.shaverMode = r.named("instrument.shaverMode",
+    shaverModeName(s.shaverMode),
+    [](const std::string& n) { return shaverModeFromName(n); });
+  s.contourStrength = r.number("instrument.contourStrength", s.contourStrength);
+  if (s.contourStrength > 1.0)
+  {
+    r.fail("instrument.contourStrength", "must lie in (0, 1]");
+  }
+}
+
+void readPreparation(const ScenarioReader& r, ScenarioDescription& s)
+{
+  if (r.find("preparation.punchBites") == nullptr)
+  {
+    return;
+  }
+  if (s.tissueModel != "meniscus")
+  {
+    r.fail("preparation.punchBites", "bites along the inner border need the meniscus model");
+  }
+  s.preBites = static_cast<int>(
+    r.whole("preparation.punchBites.count", 4.0, 1.0, 50.0, "a whole number from 1 to 50"));
+  s.preBitesFrom = r.number("preparation.punchBites.from", s.preBitesFrom, false);
+  s.preBitesTo = r.number("preparation.punchBites.to", s.preBitesTo, false);
+  if (!(0.0 <= s.preBitesFrom && s.preBitesFrom <= s.preBitesTo && s.preBitesTo <= 1.0))
+  {
+    r.fail("preparation.punchBites", "needs 0 <= from <= to <= 1 (fractions of the border)");
+  }
+  s.preBitesInward = r.number("preparation.punchBites.inward", s.preBitesInward, false);
+  if (s.preBitesInward < -2.0 || s.preBitesInward > 5.0)
+  {
+    r.fail("preparation.punchBites.inward", "must lie in [-2, 5] mm");
   }
 }
 
@@ -311,6 +378,8 @@ ScenarioDescription parseScenario(const std::string& text, const std::string& so
   s.instrumentPortal.inward = r.vector("instrument.inward", s.instrumentPortal.inward, true);
   s.scopePortal.portal = r.vector("arthroscope.portal", s.scopePortal.portal);
   s.scopePortal.inward = r.vector("arthroscope.inward", s.scopePortal.inward, true);
+  readShaver(r, s);
+  readPreparation(r, s);
   s.viewingAngle = r.number("arthroscope.viewingAngle", s.viewingAngle, false);
   if (s.viewingAngle < 0.0 || s.viewingAngle > 90.0)
   {

@@ -7,6 +7,7 @@
 #define Scenario_h
 
 #include "HexahedronElement.h"
+#include "InstrumentAction.h"
 #include "MeniscusModel.h"
 #include "ScriptedHapticDevice.h"
 #include "SurgicalInstruments.h"
@@ -68,6 +69,24 @@ struct ScenarioDescription
   /// collision area removed whole.
   int cutSurfaceRows = 1;
   double fragmentAreaFraction = 0.0;
+  /// Jagged cut surface (6.4.4; keys cutting.jagged.amplitude, .wavelength,
+  /// .seed): the rim a bite leaves, for contouring to even out.
+  double jaggedAmplitude = 0.0;
+  double jaggedWavelength = 0.5;
+  unsigned jaggedSeed = 0;
+  /// Shavers (keys instrument.shaverMode, instrument.contourStrength):
+  /// remove tissue (6.4.3) or contour the cut rim (6.4.4).
+  ShaverMode shaverMode = ShaverMode::Remove;
+  double contourStrength = 0.3;
+  /// Punch bites made as the scenario loads (key preparation.punchBites;
+  /// meniscus only): `count` bites along the inner border from fraction
+  /// `from` to `to` of it, the bite outline's centre `inward` mm into the
+  /// tissue -- the jagged rim a contouring task starts from. Not counted in
+  /// the metrics.
+  int preBites = 0;
+  double preBitesFrom = 0.4;
+  double preBitesTo = 0.6;
+  double preBitesInward = 1.0;
   /// Millimetres between the tibial and femoral cartilage.
   double jointGap = 10.0;
   SurgicalInstrumentType instrument = SurgicalInstrumentType::ProbeHook;

@@ -35,6 +35,13 @@ struct SceneMetrics
   /// the rest: tissue that should have stayed).
   double removedInTarget = 0.0;
   double removedOutsideTarget = 0.0;
+  /// Contouring (6.4.4): passes that moved the cut rim, and the rim's
+  /// roughness (TissueCutter::cutRimRoughness, RMS and largest, mm) when
+  /// the run started (after the scenario's preparation) and now.
+  int contourPasses = 0;
+  double rimRoughnessAtStart = 0.0;
+  double rimRoughness = 0.0;
+  double rimRoughnessMaximum = 0.0;
 };
 
 /// The tissue's visual surface as cut so far: made again only when a cut

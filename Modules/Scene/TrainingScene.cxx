@@ -113,12 +113,78 @@ void TrainingScene::buildCutting()
   settings.freePieces = FreePieceHandling::HandOver;
   settings.visual.cutSurfaceRows = Scenario.cutSurfaceRows;
   settings.fragmentAreaFraction = Scenario.fragmentAreaFraction;
+  settings.visual.jaggedAmplitude = Scenario.jaggedAmplitude;
+  settings.visual.jaggedWavelength = Scenario.jaggedWavelength;
+  settings.visual.jaggedSeed = Scenario.jaggedSeed;
   Cutter =
     std::make_unique<TissueCutter>(*Tissue.binding, Tissue.model.simulation, Fem.get(), settings);
-  Action = std::make_unique<InstrumentAction>(Instrument);
+  InstrumentActionSettings action;
+  action.shaverMode = Scenario.shaverMode;
+  action.contourStrength = Scenario.contourStrength;
+  Action = std::make_unique<InstrumentAction>(Instrument, action);
   // The monitor points in the cutter's hexahedra (a torn tissue's copies).
   buildWrinkles(Cutter->simulation(), Cutter->visual().mesh());
+  biteAtLoad();
   rebuildCollisionMesh();
+  measureRim();
+  Metrics.rimRoughnessAtStart = Metrics.rimRoughness;
+}
+
+void TrainingScene::biteAtLoad()
+{
+  // The scenario's preparation: punch bites along the inner border (the
+  // first monitor curve), the punch's jaws around it opening upward, its
+  // shaft toward the open side, as a surgeon bites (6.4.2) -- the rim a
+  // contouring task starts from. The bitten pieces go uncounted.
+  if (Scenario.preBites == 0 || Tissue.monitorCurves.empty())
+    return;
+  const MonitorCurve& border = Tissue.monitorCurves.front();
+  const SurgicalInstrumentModel punch = makeSurgicalInstrument(SurgicalInstrumentType::Punch);
+  Vector3 biteCentre = Vector3::Zero();
+  for (const Vector3& p : punch.biteOutline)
+    biteCentre += p;
+  biteCentre /= static_cast<double>(punch.biteOutline.size());
+  for (int k = 0; k < Scenario.preBites; ++k)
+  {
+    const double along = Scenario.preBitesFrom + (Scenario.preBitesTo - Scenario.preBitesFrom) * k /
+                                                   std::max(1, Scenario.preBites - 1);
+    // Between the border's data points (a few mm apart), so that the bites
+    // are evenly spaced.
+    const double x = along * static_cast<double>(border.monitorPoints.size() - 1);
+    const std::size_t i = std::min(static_cast<std::size_t>(x), border.monitorPoints.size() - 2);
+    const double w = x - static_cast<double>(i);
+    const Vector3 rim = (1 - w) * border.monitorPoints[i] + w * border.monitorPoints[i + 1];
+    Vector3 into = (1 - w) * border.regionPoints[i] + w * border.regionPoints[i + 1] - rim;
+    into.z() = 0.0;
+    into.normalize();
+    ToolFrame frame;
+    frame.handleAxis = -into;
+    frame.up = Vector3::UnitZ();
+    InstrumentCommand command;
+    command.pose.rotation = frame.rotation();
+    // The fixed jaw 0.6 mm below the border: the tissue rests on it.
+    command.pose.translation = rim + Scenario.preBitesInward * into - Vector3(0.0, 0.0, 0.6) -
+                               command.pose.rotation * biteCentre;
+    InstrumentAction bite(punch);
+    bite.apply(*Cutter, command);
+    command.time = JawTravelTime;
+    command.jawOpening = 0.0;
+    const InstrumentActionResult done = bite.apply(*Cutter, command);
+    if (done.changed() && Wrinkles)
+      Wrinkles->followCut(*Cutter, done.report);
+  }
+}
+
+void TrainingScene::measureRim()
+{
+  // Only where a rim can be rough (a jagged cut surface, or a shaver that
+  // contours): the measure walks every cut-surface strip.
+  if (Scenario.jaggedAmplitude > 0.0 || Scenario.shaverMode == ShaverMode::Contour)
+  {
+    const CutSurfaceRoughness rim = Cutter->cutRimRoughness();
+    Metrics.rimRoughness = rim.rootMeanSquare;
+    Metrics.rimRoughnessMaximum = rim.maximum;
+  }
 }
 
 void TrainingScene::rebuildCollisionMesh()
@@ -247,10 +313,22 @@ void TrainingScene::operate(const HapticToolState& instrument)
   command.jawOpening = JawOpening;
   command.working = pressed;
   const InstrumentActionResult done = Action->apply(*Cutter, command);
-  if (!done.changed())
+  if (done.contoured())
   {
-    return;
+    // The cut surface's rest positions moved (not the collision mesh): the
+    // view draws the rest mesh again.
+    ++TopologyVersion;
+    ++Metrics.contourPasses;
+    measureRim();
   }
+  if (done.changed())
+  {
+    takeCut(done);
+  }
+}
+
+void TrainingScene::takeCut(const InstrumentActionResult& done)
+{
   ++TopologyVersion;
   ++Metrics.operations;
   Metrics.removedVolume += done.removedVolume;
@@ -270,6 +348,7 @@ void TrainingScene::operate(const HapticToolState& instrument)
     Wrinkles->followCut(*Cutter, done.report);
   }
   rebuildCollisionMesh();
+  measureRim();
 }
 
 const TriangleMesh& TrainingScene::visualMesh() const
@@ -383,7 +462,11 @@ std::string TrainingScene::metricsJson() const
     { "operations", Metrics.operations },
     { "removed_volume_mm3", Metrics.removedVolume },
     { "removed_in_target_mm3", Metrics.removedInTarget },
-    { "removed_outside_target_mm3", Metrics.removedOutsideTarget } };
+    { "removed_outside_target_mm3", Metrics.removedOutsideTarget },
+    { "contour_passes", Metrics.contourPasses },
+    { "rim_roughness_start_mm", Metrics.rimRoughnessAtStart },
+    { "rim_roughness_mm", Metrics.rimRoughness },
+    { "rim_roughness_max_mm", Metrics.rimRoughnessMaximum } };
   return j.dump(2);
 }
 

@@ -106,6 +106,9 @@ public:
 private:
   void buildTissue();
   void buildCutting();
+  void biteAtLoad();
+  void measureRim();
+  void takeCut(const InstrumentActionResult& done);
   void buildWrinkles(const HexahedralMesh& hexahedra, const TriangleMesh& surface);
   void buildContacts();
   void rebuildCollisionMesh();

@@ -386,3 +386,84 @@ TEST(TrainingScene, YourOwnTissueFromABundleIsCut)
   scenario.tissueFile = Data + "/Scenarios/no-such.ttbundle";
   EXPECT_THROW(TrainingScene(scenario, scope, instrument), InvalidInputError);
 }
+
+// Contouring of the rim (thesis 6.4.4, fig. 6-15): the scenario bites the
+// inner border four times as it loads (jagged cut surface); the shaver in
+// contouring mode drawn along the bitten rim evens it out pass by pass,
+// removes nothing, and the metrics give the roughness before and after.
+TEST(TrainingScene, TheContouringScenarioSmoothsTheBittenRimAndRemovesNothing)
+{
+  const SceneRecording recording = readSceneRecording(Data + "/Recordings/contouring.json");
+  const ScenarioDescription scenario = readScenario(recording.scenario);
+  EXPECT_EQ(scenario.shaverMode, ShaverMode::Contour);
+  EXPECT_GT(scenario.jaggedAmplitude, 0.0);
+  EXPECT_EQ(scenario.preBites, 4);
+  ScriptedHapticDevice scope(recording.scope), instrument(recording.instrument);
+  TrainingScene scene(scenario, scope, instrument);
+  // The bites at load made the rim: rough, tissue gone, nothing counted.
+  const std::size_t active = scene.cutter()->activeTriangleCount();
+  EXPECT_LT(active, scene.cutter()->collision().triangleCount()) << "bitten pieces should be gone";
+  const double start = scene.metrics().rimRoughnessAtStart;
+  EXPECT_GT(start, 0.05) << "the bites at load should leave a jagged rim (mm)";
+  EXPECT_EQ(scene.metrics().rimRoughness, start);
+  EXPECT_EQ(scene.metrics().operations, 0);
+  const std::vector<Vector3> restBefore = scene.visualMesh().positions;
+  ASSERT_TRUE(scene.runTo(scenario.duration)) << scene.lastError();
+  const SceneMetrics& m = scene.metrics();
+  EXPECT_GT(m.contourPasses, 10);
+  EXPECT_EQ(m.operations, 0);
+  EXPECT_EQ(m.removedVolume, 0.0);
+  EXPECT_EQ(scene.cutter()->activeTriangleCount(), active);
+  EXPECT_EQ(scene.visualMesh().vertexCount(), restBefore.size()) << "contouring cuts nothing";
+  EXPECT_NE(scene.visualMesh().positions, restBefore) << "the cut surface should have moved";
+  EXPECT_LT(m.rimRoughness, 0.5 * start);
+  EXPECT_EQ(m.rimRoughness, scene.cutter()->cutRimRoughness().rootMeanSquare);
+  EXPECT_EQ(scene.topologyVersion(), m.contourPasses) << "the view draws each pass";
+  const std::string json = scene.metricsJson();
+  EXPECT_NE(json.find("\"rim_roughness_start_mm\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"rim_roughness_mm\""), std::string::npos) << json;
+  std::cout << json << "\n";
+}
+
+// The keys of contouring: shaver mode and strength (shavers only), the
+// jagged cut surface (rows needed), the bites at load (meniscus only).
+TEST(TrainingScene, ContouringKeysAreValidatedByKey)
+{
+  const ScenarioDescription s = parseScenario(
+    R"({"version": 1, "instrument": {"type": "small_shaver", "shaverMode": "contour",
+        "contourStrength": 0.4}, "cutting": {"jagged": {"amplitude": 0.3, "wavelength": 0.8,
+        "seed": 7}}, "preparation": {"punchBites": {"count": 3, "from": 0.4, "to": 0.5}}})",
+    "good.json");
+  EXPECT_EQ(s.shaverMode, ShaverMode::Contour);
+  EXPECT_EQ(s.contourStrength, 0.4);
+  EXPECT_EQ(s.jaggedAmplitude, 0.3);
+  EXPECT_EQ(s.jaggedWavelength, 0.8);
+  EXPECT_EQ(s.jaggedSeed, 7u);
+  EXPECT_EQ(s.preBites, 3);
+  EXPECT_EQ(s.preBitesTo, 0.5);
+  const auto expectKey = [](const std::string& json, const std::string& key)
+  {
+    const std::string message = messageOf(json);
+    EXPECT_NE(message.find("scenario 'bad.json': key '" + key + "'"), std::string::npos)
+      << json << " -> " << message;
+  };
+  expectKey(R"({"version": 1, "instrument": {"type": "small_shaver", "shaverMode": "polish"}})",
+    "instrument.shaverMode");
+  expectKey(R"({"version": 1, "instrument": {"type": "punch", "shaverMode": "contour"}})",
+    "instrument.shaverMode");
+  expectKey(R"({"version": 1, "instrument": {"type": "small_shaver", "contourStrength": 2}})",
+    "instrument.contourStrength");
+  expectKey(
+    R"({"version": 1, "cutting": {"jagged": {"amplitude": -0.1}}})", "cutting.jagged.amplitude");
+  expectKey(R"({"version": 1, "cutting": {"cutSurfaceRows": 0, "jagged": {"amplitude": 0.2}}})",
+    "cutting.jagged.amplitude");
+  expectKey(
+    R"({"version": 1, "cutting": {"jagged": {"wavelength": 0}}})", "cutting.jagged.wavelength");
+  expectKey(R"({"version": 1, "cutting": {"jagged": {"seed": 1.5}}})", "cutting.jagged.seed");
+  expectKey(R"({"version": 1, "preparation": {"punchBites": {"count": 0}}})",
+    "preparation.punchBites.count");
+  expectKey(R"({"version": 1, "preparation": {"punchBites": {"from": 0.7, "to": 0.2}}})",
+    "preparation.punchBites");
+  expectKey(R"({"version": 1, "tissue": {"model": "sheet"}, "preparation": {"punchBites": {}}})",
+    "preparation.punchBites");
+}
