@@ -3,8 +3,12 @@
 // that it can be made again when the models change. For each of five bites
 // along the bucket-handle fragment's inner border (35 % to 65 % of it): from
 // 6 mm above, down beside the border, onto it with the jaws' bite outline
-// centred 0.8 mm in from the border and its face 0.3 mm above the border's
-// monitor point, the first button held 0.2 s (the jaws close and bite),
+// centred 0.8 mm in from the border and its face 0.6 mm below the border's
+// monitor point (the fixed jaw under the tissue: the portal tilts the jaws
+// about 27 degrees, so that with the face 0.3 mm above the border, as first
+// made, the tissue under the bite's proximal end lay 1.1-1.4 mm below the
+// face, out of the bite's reach, and the first bite's loop stayed open),
+// the first button held 0.2 s (the jaws close and bite),
 // released, and back out. The arthroscope follows the examination's
 // recording. Usage: ThinTissueMakePunchRecording SCENARIO OUTPUT
 // SCENARIO-AS-WRITTEN EXAMINATION-RECORDING
@@ -85,7 +89,7 @@ int main(int argc, char** argv)
   {
     Vector3 point, inward;
     borderAt(border, 0.35 + 0.3 * bite / 4.0, point, inward);
-    const Vector3 target = point + 0.8 * inward + Vector3(0.0, 0.0, 0.3);
+    const Vector3 target = point + 0.8 * inward - Vector3(0.0, 0.0, 0.6);
     const Vector3 on = mapping.stylusPositionPlacing(outline, target, rotation);
     const Vector3 beside = mapping.stylusPositionPlacing(outline, target - 3.0 * inward, rotation);
     const Vector3 above = mapping.stylusPositionPlacing(
