@@ -6,8 +6,11 @@
 #include "vtkThinTissueConversion.h"
 
 #include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkLogger.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
@@ -26,6 +29,16 @@ struct vtkThinTissueCutFilter::Internals
   std::unique_ptr<thintissue::TissueCutter> Cutter;
   vtkMTimeType BuiltFrom = 0; ///< newest input MTime when built
   vtkMTimeType LastBlade = 0; ///< MTime of the last blade applied
+  /// Contouring passes asked for since the last update: centre, radius,
+  /// strength.
+  struct ContourPass
+  {
+    thintissue::Vector3 centre;
+    double radius;
+    double strength;
+  };
+  std::vector<ContourPass> PendingPasses;
+  int ContouredVertices = 0; ///< moved by the last update's passes
 };
 
 vtkThinTissueCutFilter::vtkThinTissueCutFilter()
@@ -56,6 +69,51 @@ void vtkThinTissueCutFilter::SetBladeData(vtkPolyData* blade)
   vtkNew<vtkTrivialProducer> producer;
   producer->SetOutput(blade);
   this->SetInputConnection(BladeInputPort, producer->GetOutputPort());
+}
+
+void vtkThinTissueCutFilter::AddContourPass(double centreX,
+  double centreY,
+  double centreZ,
+  double radius,
+  double strength)
+{
+  this->Tissue->PendingPasses.push_back({ { centreX, centreY, centreZ }, radius, strength });
+  this->Modified();
+}
+
+void vtkThinTissueCutFilter::ApplyContourPasses()
+{
+  Internals& tissue = *this->Tissue;
+  tissue.ContouredVertices = 0;
+  std::vector<Internals::ContourPass> passes;
+  passes.swap(tissue.PendingPasses); // applied once, even if one fails
+  for (const Internals::ContourPass& pass : passes)
+  {
+    const thintissue::CutRimContourReport report =
+      tissue.Cutter->contour(pass.centre, pass.radius, pass.strength);
+    tissue.ContouredVertices += static_cast<int>(report.movedVertices.size());
+    ++this->NumberOfContourPasses;
+  }
+}
+
+void vtkThinTissueCutFilter::WriteRoughness(vtkPolyData* output)
+{
+  const thintissue::CutSurfaceRoughness rim = this->Tissue->Cutter->cutRimRoughness();
+  this->RimRoughness = rim.rootMeanSquare;
+  this->RimRoughnessMaximum = rim.maximum;
+  const auto value = [output](const char* name, double x)
+  {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(name);
+    array->InsertNextValue(x);
+    output->GetFieldData()->AddArray(array);
+  };
+  value("RimRoughness", rim.rootMeanSquare);
+  value("RimRoughnessMaximum", rim.maximum);
+  vtkNew<vtkIntArray> moved;
+  moved->SetName("ContouredVertices");
+  moved->InsertNextValue(this->Tissue->ContouredVertices);
+  output->GetFieldData()->AddArray(moved);
 }
 
 void vtkThinTissueCutFilter::ResetTissue()
@@ -179,6 +237,9 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
                               ? thintissue::FreePieceHandling::Drop
                               : thintissue::FreePieceHandling::Keep;
       settings.fragmentAreaFraction = this->FragmentAreaFraction;
+      settings.visual.jaggedAmplitude = this->JaggedAmplitude;
+      settings.visual.jaggedWavelength = this->JaggedWavelength;
+      settings.visual.jaggedSeed = this->JaggedSeed;
       const thintissue::VisualCollisionBinding binding =
         thintissue::bindingFromPolyData(visualInput, collisionInput, settings.radiusArrayName);
       tissue.Cutter = std::make_unique<thintissue::TissueCutter>(
@@ -188,6 +249,7 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
       this->NumberOfCuts = 0;
       this->LastCutMilliseconds = 0.0;
       this->LastCutChangedTissue = 0;
+      this->NumberOfContourPasses = 0;
     }
     if (blade && blade->GetMTime() > tissue.LastBlade && blade->GetNumberOfCells() > 0)
     {
@@ -211,6 +273,7 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
         report.visual.changedTriangles.size(),
         report.totalMilliseconds);
     }
+    this->ApplyContourPasses();
   }
   catch (const std::exception& error)
   {
@@ -225,6 +288,7 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
     }
   }
   visualOutput->ShallowCopy(visualOutputOf(*tissue.Cutter));
+  this->WriteRoughness(visualOutput);
   thintissue::TriangleMesh collision = tissue.Cutter->collisionMesh();
   collision.triangles.clear();
   for (std::size_t t = 0; t < tissue.Cutter->collision().triangleCount(); ++t)
@@ -245,6 +309,12 @@ void vtkThinTissueCutFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FreePieces: "
      << (this->FreePieces == DROP_FREE_PIECES ? "DROP_FREE_PIECES" : "KEEP_FREE_PIECES") << "\n";
   os << indent << "FragmentAreaFraction: " << this->FragmentAreaFraction << "\n";
+  os << indent << "JaggedAmplitude: " << this->JaggedAmplitude << "\n";
+  os << indent << "JaggedWavelength: " << this->JaggedWavelength << "\n";
+  os << indent << "JaggedSeed: " << this->JaggedSeed << "\n";
+  os << indent << "NumberOfContourPasses: " << this->NumberOfContourPasses << "\n";
+  os << indent << "RimRoughness: " << this->RimRoughness << "\n";
+  os << indent << "RimRoughnessMaximum: " << this->RimRoughnessMaximum << "\n";
   os << indent << "NumberOfCuts: " << this->NumberOfCuts << "\n";
   os << indent << "LastCutMilliseconds: " << this->LastCutMilliseconds << "\n";
   os << indent << "LastCutChangedTissue: " << this->LastCutChangedTissue << "\n";

@@ -20,8 +20,17 @@
  * after ResetTissue()); each update whose blade input was modified since
  * the last cut applies that blade once (a blade present when the tissue
  * is built cuts it). CutSurfaceRows and SnapFraction
- * take effect when the tissue is built, as do FreePieces and
- * FragmentAreaFraction.
+ * take effect when the tissue is built, as do FreePieces,
+ * FragmentAreaFraction and the jagged cut surface (JaggedAmplitude,
+ * JaggedWavelength, JaggedSeed; thesis 6.4.4).
+ *
+ * Contouring (6.4.4): AddContourPass() asks for a pass of a tool held on
+ * the cut rim (a sphere and a strength, as TissueCutter::contour); the
+ * next update applies the passes asked for since the last, after the cut.
+ * The output's field data carry the rim's roughness (TissueCutter::
+ * cutRimRoughness): "RimRoughness" (RMS, mm), "RimRoughnessMaximum" (mm)
+ * and "ContouredVertices" (cut-surface vertices the last update's passes
+ * moved).
  *
  * Output port 0: the visual surface with its cut surfaces (rest
  * positions), with the binding arrays of the input (the binding after the
@@ -115,6 +124,36 @@ public:
   vtkGetMacro(FragmentAreaFraction, double);
   ///@}
 
+  ///@{
+  /// Jagged cut surface (6.4.4): amplitude (mm; 0, the default, a smooth
+  /// cut), wavelength (mm, default 0.5) and seed of the noise that moves
+  /// the cut surface across the cut. Needs CutSurfaceRows >= 1.
+  vtkSetClampMacro(JaggedAmplitude, double, 0.0, 100.0);
+  vtkGetMacro(JaggedAmplitude, double);
+  vtkSetClampMacro(JaggedWavelength, double, 1e-3, 1e3);
+  vtkGetMacro(JaggedWavelength, double);
+  vtkSetMacro(JaggedSeed, vtkTypeUInt32);
+  vtkGetMacro(JaggedSeed, vtkTypeUInt32);
+  ///@}
+
+  /// Asks for a contouring pass at the next update: the cut surface within
+  /// `radius` of `centre` (world) is smoothed by `strength` in [0, 1] where
+  /// the tool is (TissueCutter::contour). Bad values are reported by that
+  /// update. Marks the filter modified.
+  void AddContourPass(double centreX,
+    double centreY,
+    double centreZ,
+    double radius,
+    double strength);
+
+  ///@{
+  /// The rim's roughness after the last update (as the field data), and
+  /// the contouring passes applied since the tissue was built.
+  vtkGetMacro(RimRoughness, double);
+  vtkGetMacro(RimRoughnessMaximum, double);
+  vtkGetMacro(NumberOfContourPasses, int);
+  ///@}
+
   /// Forgets the cuts: the next update builds the tissue from the inputs.
   void ResetTissue();
 
@@ -148,6 +187,12 @@ protected:
   double SnapFraction = 0.15;
   int FreePieces = KEEP_FREE_PIECES;
   double FragmentAreaFraction = 0.0;
+  double JaggedAmplitude = 0.0;
+  double JaggedWavelength = 0.5;
+  vtkTypeUInt32 JaggedSeed = 0;
+  double RimRoughness = 0.0;
+  double RimRoughnessMaximum = 0.0;
+  int NumberOfContourPasses = 0;
   int NumberOfCuts = 0;
   double LastCutMilliseconds = 0.0;
   vtkTypeBool LastCutChangedTissue = 0;
@@ -159,6 +204,8 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> Tissue;
+  void ApplyContourPasses();
+  void WriteRoughness(vtkPolyData* output);
 };
 
 #endif

@@ -1,6 +1,8 @@
 """Surgical operations from Python (thesis 6.4): the basket punch's bite at
 the meniscus's inner border, made by vtkInstrumentBladeSource and given to
-vtkThinTissueCutFilter with free pieces dropped, takes a piece out; the
+vtkThinTissueCutFilter with free pieces dropped, takes a piece out; with a
+jagged cut surface the bitten rim is rough (field data RimRoughness) and
+contouring passes at the bite smooth it, removing nothing (6.4.4); the
 probe hook makes no blade."""
 import math
 import unittest
@@ -75,6 +77,55 @@ class OperationsTest(unittest.TestCase):
         self.assertTrue(self.cut.GetLastCutChangedTissue())
         after = collision_area(self.cut.GetCollisionOutput())
         self.assertLess(after, before - 1.0)  # mm^2 went with the piece
+
+    def bite_in_the_middle_of_the_border(self):
+        monitors = self.meniscus.GetMonitorPointsOutput()
+        self.blade.SetInstrument(1)
+        self.blade.Update()
+        bounds = self.blade.GetOutput().GetBounds()
+        centre = (0.0, 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]))
+        self.blade.SetPose(punch_pose(monitors, centre))
+        self.cut.Update()
+        self.assertEqual(self.cut.GetLastErrorMessage(), "")
+        self.assertTrue(self.cut.GetLastCutChangedTissue())
+        return monitors.GetPoint(monitors.GetNumberOfPoints() // 2)
+
+    def rim_roughness(self):
+        field = self.cut.GetVisualOutput().GetFieldData()
+        self.assertEqual(field.GetArray("RimRoughness").GetValue(0),
+                         self.cut.GetRimRoughness())
+        return self.cut.GetRimRoughness()
+
+    def test_a_jagged_bite_is_smoothed_by_contouring_passes(self):
+        self.cut.SetJaggedAmplitude(0.3)
+        self.cut.SetJaggedSeed(5)
+        rim = self.bite_in_the_middle_of_the_border()
+        jagged = self.rim_roughness()
+        self.assertGreater(jagged, 0.03)  # mm
+        self.assertGreaterEqual(self.cut.GetRimRoughnessMaximum(), jagged)
+        area = collision_area(self.cut.GetCollisionOutput())
+        cells = self.cut.GetVisualOutput().GetNumberOfCells()
+        # Passes of a tool held on the bitten rim (a 3 mm sphere about the
+        # bite's centre, full strength): the jaggedness goes, nothing else.
+        for _ in range(3):
+            self.cut.AddContourPass(rim[0], rim[1], rim[2], 3.0, 1.0)
+        self.cut.Update()
+        self.assertEqual(self.cut.GetLastErrorMessage(), "")
+        self.assertEqual(self.cut.GetNumberOfContourPasses(), 3)
+        moved = self.cut.GetVisualOutput().GetFieldData().GetArray("ContouredVertices")
+        self.assertGreater(moved.GetValue(0), 0)
+        self.assertLess(self.rim_roughness(), 0.5 * jagged)
+        self.assertEqual(self.cut.GetNumberOfCuts(), 1)
+        self.assertAlmostEqual(collision_area(self.cut.GetCollisionOutput()), area, places=9)
+        self.assertEqual(self.cut.GetVisualOutput().GetNumberOfCells(), cells)
+
+    def test_a_smooth_bite_has_no_roughness_and_a_bad_pass_is_reported(self):
+        rim = self.bite_in_the_middle_of_the_border()
+        self.assertEqual(self.rim_roughness(), 0.0)
+        self.cut.AddContourPass(rim[0], rim[1], rim[2], -1.0, 0.5)
+        self.cut.GlobalWarningDisplayOff()
+        self.cut.Update()
+        self.assertIn("radius", self.cut.GetLastErrorMessage())
 
     def test_the_probe_makes_no_blade(self):
         self.blade.SetInstrument(0)
