@@ -64,7 +64,8 @@ SettingsPanel::SettingsPanel(Starter start, QWidget* parent)
     form->addRow(QString::fromUtf8(setting.label), edit);
     Fields[setting.key] = edit;
   }
-  auto* button = new QPushButton("Apply (restarts the scenario)", this);
+  auto* button =
+    new QPushButton("Apply (the cut surface's settings restart a cutting scenario)", this);
   form->addRow(button);
   Message = new QLabel(this);
   Message->setWordWrap(true);

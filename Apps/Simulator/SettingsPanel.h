@@ -3,8 +3,10 @@
 // magnitude bound m^up, window e - s) and the cut surface (5.3.4: rows,
 // fragments removed whole). Apply validates them as a scenario file is
 // (applyScenarioSettings: the message names the setting's key) and hands
-// the changed scenario to the window, which starts it again; on an error
-// the panel says why and the running scenario goes on.
+// the changed scenario to the window, which applies it to the running
+// scene (material, wrinkles) or, for the cut surface of a tissue being
+// cut, starts it again; on an error the panel says why and the running
+// scenario goes on.
 #ifndef SettingsPanel_h
 #define SettingsPanel_h
 
@@ -26,7 +28,8 @@ class SettingsPanel : public QWidget
 {
   Q_OBJECT
 public:
-  /// `start` starts a changed scenario; false if it could not (it said why).
+  /// `start` applies a changed scenario (live or by starting it again);
+  /// false if it could not (it said why).
   using Starter = std::function<bool(const ScenarioDescription&)>;
   SettingsPanel(Starter start, QWidget* parent = nullptr);
 

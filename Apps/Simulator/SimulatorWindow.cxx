@@ -100,7 +100,7 @@ QWidget* SimulatorWindow::makePanel()
   layout->addStretch();
   tabs->addTab(panel, "Session");
   Settings = new SettingsPanel(
-    [this](const ScenarioDescription& changed) { return startScenario(changed); }, tabs);
+    [this](const ScenarioDescription& changed) { return changeSettings(changed); }, tabs);
   tabs->addTab(Settings, "Settings");
   return tabs;
 }
@@ -248,6 +248,20 @@ bool SimulatorWindow::startScenario(const ScenarioDescription& scenario)
     startLoop();
     return failToLoad(error.what());
   }
+}
+
+bool SimulatorWindow::changeSettings(const ScenarioDescription& changed)
+{
+  // The physics thread paused for the change: the scene is ours meanwhile.
+  stopLoop();
+  const bool live = Scene->applySettings(changed);
+  if (!live)
+  {
+    return startScenario(changed);
+  }
+  Settings->show(Scene->scenario());
+  startLoop();
+  return true;
 }
 
 bool SimulatorWindow::failToLoad(const std::string& message)

@@ -66,6 +66,10 @@ public:
   bool loadScenario(const std::string& path, const std::string& instrument = "");
   /// Starts `scenario` (read already, perhaps changed); as loadScenario.
   bool startScenario(const ScenarioDescription& scenario);
+  /// The settings panel's changes: applied to the running scene between
+  /// two steps where it can take them (TrainingScene::applySettings),
+  /// otherwise the scenario starts again with them; as startScenario.
+  bool changeSettings(const ScenarioDescription& changed);
   /// Writes the window's picture (PNG); false if it could not.
   bool screenshot(const std::string& path);
   /// The scene's parts that never change once built (scenario, instrument

@@ -351,6 +351,41 @@ void TrainingScene::takeCut(const InstrumentActionResult& done)
   measureRim();
 }
 
+bool TrainingScene::applySettings(const ScenarioDescription& changed)
+{
+  const bool cutSurfaceChanged = changed.cutSurfaceRows != Scenario.cutSurfaceRows ||
+                                 changed.fragmentAreaFraction != Scenario.fragmentAreaFraction ||
+                                 changed.jaggedAmplitude != Scenario.jaggedAmplitude ||
+                                 changed.jaggedWavelength != Scenario.jaggedWavelength ||
+                                 changed.jaggedSeed != Scenario.jaggedSeed;
+  if (Cutter && cutSurfaceChanged)
+  {
+    return false;
+  }
+  const LinearMaterial& m = changed.material;
+  if (m.youngModulus != Scenario.material.youngModulus ||
+      m.poissonRatio != Scenario.material.poissonRatio || m.density != Scenario.material.density)
+  {
+    // Each element's stiffness and mass made again from its rest shape
+    // (the solver keeps positions and velocities: the tissue goes on from
+    // where it is, softer or stiffer).
+    for (std::size_t h = 0; h < Fem->hexahedronCount(); ++h)
+      Fem->setMaterial(h, m);
+  }
+  if (Wrinkles)
+  {
+    Wrinkles->setParameters(changed.wrinkle);
+  }
+  Scenario.material = changed.material;
+  Scenario.wrinkle = changed.wrinkle;
+  Scenario.cutSurfaceRows = changed.cutSurfaceRows;
+  Scenario.fragmentAreaFraction = changed.fragmentAreaFraction;
+  Scenario.jaggedAmplitude = changed.jaggedAmplitude;
+  Scenario.jaggedWavelength = changed.jaggedWavelength;
+  Scenario.jaggedSeed = changed.jaggedSeed;
+  return true;
+}
+
 const TriangleMesh& TrainingScene::visualMesh() const
 {
   return Cutter ? Cutter->visual().mesh() : Tissue.model.visual;

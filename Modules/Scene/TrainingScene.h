@@ -68,6 +68,17 @@ public:
   /// thread that steps the scene.
   void snapshot(SceneSnapshot& out) const;
 
+  /// Applies changed settings (the window's panel: applyScenarioSettings)
+  /// to the running scene between two steps, without building it again:
+  /// the material (every hexahedron's, the masses following) and the
+  /// wrinkle parameters. The cut-surface settings (rows, fragments, jagged
+  /// cut surface) are taken by the cutter when it is built: with a cutting
+  /// instrument a change of them returns false, changing nothing (build
+  /// the scene again); without one they are kept for the next build. Only
+  /// the settings' keys may differ from scenario(). Not while another
+  /// thread steps the scene.
+  bool applySettings(const ScenarioDescription& changed);
+
   double time() const { return Metrics.time; }
   const ScenarioDescription& scenario() const { return Scenario; }
   const SceneMetrics& metrics() const { return Metrics; }

@@ -473,3 +473,57 @@ TEST(TrainingScene, ContouringKeysAreValidatedByKey)
   expectKey(R"({"version": 1, "tissue": {"model": "sheet"}, "preparation": {"punchBites": {}}})",
     "preparation.punchBites");
 }
+
+// Live settings (the window's panel): material and wrinkle parameters reach
+// the running scene without building it again -- applied before the first
+// step they give the run of a scene built with them, bit for bit (and not
+// the run without them); applied mid-run a softer tissue gives way more
+// from then on. The cut-surface settings of a tissue being cut need the
+// scene built again (refused, nothing changed).
+TEST(TrainingScene, MaterialAndWrinkleSettingsApplyToTheRunningScene)
+{
+  Replay unchanged, live;
+  ScenarioDescription changed = unchanged.scenario;
+  changed.material.youngModulus *= 0.5;
+  changed.wrinkle.windowSize = 2;
+  ScriptedHapticDevice scope(unchanged.recording.scope);
+  ScriptedHapticDevice instrument(unchanged.recording.instrument);
+  TrainingScene fromStart(changed, scope, instrument);
+  ASSERT_TRUE(live.scene.applySettings(changed));
+  EXPECT_EQ(live.scene.scenario().material.youngModulus, changed.material.youngModulus);
+  ASSERT_TRUE(fromStart.runTo(2.0));
+  ASSERT_TRUE(live.scene.runTo(2.0));
+  ASSERT_TRUE(unchanged.scene.runTo(2.0));
+  EXPECT_EQ(live.scene.visualPositions(), fromStart.visualPositions());
+  EXPECT_NE(live.scene.visualPositions(), unchanged.scene.visualPositions());
+
+  // Mid-run, during the press: the unchanged scene softened from 2 s on
+  // gives way more by 2.6 s than the scene that stays stiff.
+  const std::vector<Vector3> rest = unchanged.scene.tissue().visual.positions;
+  const auto deepest = [&rest](const TrainingScene& scene)
+  {
+    double d = 0.0;
+    for (std::size_t i = 0; i < rest.size(); ++i)
+      d = std::max(d, (scene.visualPositions()[i] - rest[i]).norm());
+    return d;
+  };
+  ScenarioDescription stiff = changed;
+  stiff.material.youngModulus = 4.0 * unchanged.scenario.material.youngModulus;
+  ASSERT_TRUE(live.scene.applySettings(stiff));
+  ASSERT_TRUE(unchanged.scene.applySettings(changed));
+  ASSERT_TRUE(live.scene.runTo(2.6));
+  ASSERT_TRUE(unchanged.scene.runTo(2.6));
+  EXPECT_GT(deepest(unchanged.scene), 1.1 * deepest(live.scene));
+
+  // A cutting scene keeps its cut-surface settings until built again.
+  const SceneRecording sheet = readSceneRecording(Data + "/Recordings/sheet-cutting.json");
+  const ScenarioDescription knife = readScenario(sheet.scenario);
+  ScriptedHapticDevice sheetScope(sheet.scope), sheetKnife(sheet.instrument);
+  TrainingScene cutting(knife, sheetScope, sheetKnife);
+  ScenarioDescription rows = knife;
+  rows.cutSurfaceRows = knife.cutSurfaceRows + 1;
+  rows.material.youngModulus = 2.0 * knife.material.youngModulus;
+  EXPECT_FALSE(cutting.applySettings(rows));
+  EXPECT_EQ(cutting.scenario().cutSurfaceRows, knife.cutSurfaceRows);
+  EXPECT_EQ(cutting.scenario().material.youngModulus, knife.material.youngModulus);
+}
