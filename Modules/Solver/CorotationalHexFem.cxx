@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 namespace thintissue
 {
@@ -45,11 +46,91 @@ void checkSettings(const CorotationalHexFemSettings& s)
                "negative (got "
             << s.refactorizationIterations << ", " << s.staleFactorIterationBudget << ")";
   }
+  else if (s.supernodalThreshold < 0 || s.backgroundRefactorizationThreshold < 0)
+  {
+    problem << "supernodal and background-refactorization thresholds must not be negative (got "
+            << s.supernodalThreshold << ", " << s.backgroundRefactorizationThreshold << ")";
+  }
+  else if (s.backgroundRefactorizationLag < 1 || s.staleFactorIterationCap < 1)
+  {
+    problem << "background-refactorization lag and stale-factor iteration cap must be at least 1 "
+               "(got "
+            << s.backgroundRefactorizationLag << ", " << s.staleFactorIterationCap << ")";
+  }
   if (problem.tellp() != 0)
   {
     throw InvalidInputError("co-rotational FEM settings: " + problem.str());
   }
 }
+
+/// A CHOLMOD factor of the system matrix. CHOLMOD keeps its workspace in
+/// the object, so each thread that factorizes has its own.
+class CholmodFactor
+{
+public:
+  /// Forgets the pattern analysis (after a topology change).
+  void reset() { Analysed = false; }
+  /// Factorizes `matrix` (upper triangle), analysing its pattern first if
+  /// needed with the mode and ordering of `settings`; false if not positive
+  /// definite.
+  bool factorize(const SparseMatrix& matrix, const CorotationalHexFemSettings& settings)
+  {
+    if (!Analysed)
+    {
+      const bool supernodal = matrix.rows() >= settings.supernodalThreshold;
+      Decomposition.setMode(supernodal ? Eigen::CholmodSupernodalLLt : Eigen::CholmodLDLt);
+      cholmod_common& common = Decomposition.cholmod();
+      common.nmethods = settings.factorOrdering == FactorOrdering::CholmodDefault ? 0 : 1;
+      common.method[0].ordering = orderingCode(settings.factorOrdering);
+      common.postorder = 1;
+      Decomposition.analyzePattern(matrix);
+      Analysed = true;
+    }
+    Decomposition.factorize(matrix);
+    return Decomposition.info() == Eigen::Success;
+  }
+  void solve(const Eigen::VectorXd& right, Eigen::VectorXd& solution)
+  {
+    solution = Decomposition.solve(right);
+  }
+
+private:
+  static int orderingCode(FactorOrdering ordering)
+  {
+    switch (ordering)
+    {
+      case FactorOrdering::Metis:
+        return CHOLMOD_METIS;
+      case FactorOrdering::NestedDissection:
+        return CHOLMOD_NESDIS;
+      default:
+        return CHOLMOD_AMD;
+    }
+  }
+  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Upper> Decomposition;
+  bool Analysed = false;
+};
+
+/// A refactorization running on a worker thread (the stale factor refreshed
+/// off the step): the matrix of the step that started it, the factor it
+/// fills, and the step at which it is swapped in. The main thread touches
+/// `matrix`, `factor` and `ok` only while no worker runs.
+struct BackgroundRefactorization
+{
+  SparseMatrix matrix;
+  std::unique_ptr<CholmodFactor> factor = std::make_unique<CholmodFactor>();
+  std::thread worker;
+  bool ok = false;
+  /// Step index at which it lands; -1 when none runs.
+  long long dueStep = -1;
+  ~BackgroundRefactorization()
+  {
+    if (worker.joinable())
+    {
+      worker.join();
+    }
+  }
+};
 } // namespace
 
 /// The free-DOF system: numbering, upper-triangular pattern, where each
@@ -67,11 +148,16 @@ struct CorotationalHexFem::LinearSystem
   Eigen::VectorXd solution;
   Eigen::VectorXd previousSolution;
   std::vector<Vector3> forces;
-  Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Upper> cholmod;
-  bool cholmodAnalysed = false;
-  /// The factor is of the current matrix (not of an earlier step's).
+  std::unique_ptr<CholmodFactor> factor = std::make_unique<CholmodFactor>();
+  /// A factor exists for the present pattern (for the Cholmod kind: of the
+  /// current matrix; for the stale-factor kind: of an earlier step's).
   bool factorValid = false;
   int factorizations = 0;
+  int synchronousFactorizations = 0;
+  BackgroundRefactorization refresh;
+  std::function<void()> backgroundHook;
+  /// Steps begun so far: the clock of the deterministic background refresh.
+  long long stepIndex = 0;
   /// Iterations beyond the first spent with the present factor: the price
   /// of its staleness, paid down by refactorizing (see Settings).
   int excessIterations = 0;
@@ -225,6 +311,11 @@ void CorotationalHexFem::setFixed(std::size_t node, bool fixed)
 void CorotationalHexFem::setSettings(const CorotationalHexFemSettings& settings)
 {
   checkSettings(settings);
+  if (settings.supernodalThreshold != Settings.supernodalThreshold ||
+      settings.factorOrdering != Settings.factorOrdering)
+  {
+    TopologyChanged = true; // the factor's analysis depends on them
+  }
   Settings = settings;
 }
 
@@ -480,7 +571,9 @@ void CorotationalHexFem::prepareSystem()
   s.solution.setZero(s.dofCount);
   s.previousSolution.setZero(s.dofCount);
   s.forces.assign(Positions.size(), Vector3::Zero());
-  s.cholmodAnalysed = false;
+  cancelBackgroundRefactorization();
+  s.refresh.factor->reset();
+  s.factor->reset();
   s.factorValid = false;
   TopologyChanged = false;
 }
@@ -627,7 +720,7 @@ bool CorotationalHexFem::solveSystem(Eigen::VectorXd& solution,
     {
       return false;
     }
-    solution = s.cholmod.solve(s.rhs);
+    s.factor->solve(s.rhs, solution);
     iterations = 1;
   }
   else
@@ -734,15 +827,10 @@ void CorotationalHexFem::assembleContacts(double h)
 bool CorotationalHexFem::factorize(std::string& message)
 {
   LinearSystem& s = *System;
-  if (!s.cholmodAnalysed)
-  {
-    s.cholmod.analyzePattern(s.matrix);
-    s.cholmodAnalysed = true;
-  }
-  s.cholmod.factorize(s.matrix);
+  s.factorValid = s.factor->factorize(s.matrix, Settings);
   ++s.factorizations;
+  ++s.synchronousFactorizations;
   s.excessIterations = 0;
-  s.factorValid = s.cholmod.info() == Eigen::Success;
   if (!s.factorValid)
   {
     message = "the system matrix is not positive definite (CHOLMOD factorization failed)";
@@ -750,48 +838,125 @@ bool CorotationalHexFem::factorize(std::string& message)
   return s.factorValid;
 }
 
+bool CorotationalHexFem::refreshesInBackground() const
+{
+  const LinearSolverKind kind = Settings.solver;
+  return (kind == LinearSolverKind::StaleFactorConjugateGradient ||
+           (kind == LinearSolverKind::Automatic && System->dofCount <= AutomaticDirectLimit)) &&
+         System->dofCount >= Settings.backgroundRefactorizationThreshold;
+}
+
+void CorotationalHexFem::startBackgroundRefactorization()
+{
+  LinearSystem& s = *System;
+  BackgroundRefactorization& refresh = s.refresh;
+  if (refresh.dueStep >= 0)
+  {
+    return; // one at a time
+  }
+  refresh.matrix = s.matrix; // this step's matrix; the next steps reassemble theirs
+  refresh.dueStep = s.stepIndex + Settings.backgroundRefactorizationLag;
+  refresh.worker = std::thread(
+    [&refresh, settings = Settings, hook = s.backgroundHook]
+    {
+      if (hook)
+      {
+        hook();
+      }
+      refresh.ok = refresh.factor->factorize(refresh.matrix, settings);
+    });
+}
+
+void CorotationalHexFem::landBackgroundRefactorization()
+{
+  LinearSystem& s = *System;
+  BackgroundRefactorization& refresh = s.refresh;
+  if (refresh.dueStep < 0 || s.stepIndex < refresh.dueStep)
+  {
+    return;
+  }
+  refresh.worker.join(); // waits if unfinished: the swap step is fixed
+  refresh.dueStep = -1;
+  ++s.factorizations;
+  if (refresh.ok)
+  {
+    std::swap(s.factor, refresh.factor); // the old factor is reused for the next refresh
+    s.factorValid = true;
+    s.excessIterations = 0;
+  }
+}
+
+void CorotationalHexFem::cancelBackgroundRefactorization()
+{
+  BackgroundRefactorization& refresh = System->refresh;
+  if (refresh.worker.joinable())
+  {
+    refresh.worker.join();
+  }
+  refresh.dueStep = -1;
+}
+
+bool CorotationalHexFem::iterateWithFactor(Eigen::VectorXd& x, int limit, int& iterations)
+{
+  LinearSystem& s = *System;
+  const auto A = s.matrix.selfadjointView<Eigen::Upper>();
+  const double target = Settings.conjugateGradientTolerance * s.rhs.norm();
+  x = s.previousSolution;
+  s.product.noalias() = A * x;
+  s.residual = s.rhs - s.product;
+  s.factor->solve(s.residual, s.preconditioned);
+  s.direction = s.preconditioned;
+  double rho = s.residual.dot(s.preconditioned);
+  for (iterations = 0; iterations < limit && s.residual.norm() > target; ++iterations)
+  {
+    s.product.noalias() = A * s.direction;
+    const double step = rho / s.direction.dot(s.product);
+    x += step * s.direction;
+    s.residual -= step * s.product;
+    s.factor->solve(s.residual, s.preconditioned);
+    const double next = s.residual.dot(s.preconditioned);
+    s.direction = s.preconditioned + (next / rho) * s.direction;
+    rho = next;
+  }
+  return s.residual.norm() <= target;
+}
+
 bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
   int& iterations,
   std::string& message)
 {
   // Preconditioned conjugate gradients (M^-1 = the last factor), started
-  // from the previous step's solution; refactorize and retry when the
-  // factor has gone too stale.
+  // from the previous step's solution. A factor gone too stale is renewed:
+  // in the step (small systems: the factorization is cheap), or on a worker
+  // thread while this factor keeps preconditioning, with a synchronous
+  // refactorization only when it no longer converges within the cap.
   LinearSystem& s = *System;
-  const auto A = s.matrix.selfadjointView<Eigen::Upper>();
-  const double target = Settings.conjugateGradientTolerance * s.rhs.norm();
-  if (s.excessIterations > Settings.staleFactorIterationBudget)
+  const bool background = refreshesInBackground();
+  if (!background && s.excessIterations > Settings.staleFactorIterationBudget)
   {
     s.factorValid = false;
   }
   for (int attempt = 0; attempt < 2; ++attempt)
   {
-    if (!s.factorValid && !factorize(message))
+    if (!s.factorValid)
     {
-      return false;
+      cancelBackgroundRefactorization(); // of an older matrix than this one
+      if (!factorize(message))
+      {
+        return false;
+      }
     }
-    x = s.previousSolution;
-    s.product.noalias() = A * x;
-    s.residual = s.rhs - s.product;
-    s.preconditioned = s.cholmod.solve(s.residual);
-    s.direction = s.preconditioned;
-    double rho = s.residual.dot(s.preconditioned);
-    const int limit =
-      attempt == 0 ? Settings.refactorizationIterations : Settings.conjugateGradientMaxIterations;
-    for (iterations = 0; iterations < limit && s.residual.norm() > target; ++iterations)
-    {
-      s.product.noalias() = A * s.direction;
-      const double step = rho / s.direction.dot(s.product);
-      x += step * s.direction;
-      s.residual -= step * s.product;
-      s.preconditioned = s.cholmod.solve(s.residual);
-      const double next = s.residual.dot(s.preconditioned);
-      s.direction = s.preconditioned + (next / rho) * s.direction;
-      rho = next;
-    }
-    if (s.residual.norm() <= target)
+    const int staleLimit =
+      background ? Settings.staleFactorIterationCap : Settings.refactorizationIterations;
+    const int limit = attempt == 0 ? staleLimit : Settings.conjugateGradientMaxIterations;
+    if (iterateWithFactor(x, limit, iterations))
     {
       s.excessIterations += std::max(0, iterations - 1);
+      if (background && (iterations > Settings.refactorizationIterations ||
+                          s.excessIterations > Settings.staleFactorIterationBudget))
+      {
+        startBackgroundRefactorization();
+      }
       if (!x.allFinite())
       {
         message = "the solution is not finite (NaN or infinity)";
@@ -830,6 +995,8 @@ SolverResult CorotationalHexFem::beginCoupledStep()
   SolverResult result;
   prepareSystem();
   LinearSystem& s = *System;
+  ++s.stepIndex;
+  landBackgroundRefactorization();
   if (s.dofCount == 0)
   {
     return result;
@@ -899,7 +1066,7 @@ bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
   {
     return false;
   }
-  z = s.cholmod.solve(r);
+  s.factor->solve(r, z);
   return true;
 }
 
@@ -914,7 +1081,14 @@ void CorotationalHexFem::chargeStaleIterations(int iterations)
   s.excessIterations += std::max(0, iterations - 1);
   if (s.excessIterations > Settings.staleFactorIterationBudget)
   {
-    s.factorValid = false;
+    if (refreshesInBackground())
+    {
+      startBackgroundRefactorization();
+    }
+    else
+    {
+      s.factorValid = false;
+    }
   }
 }
 
@@ -1030,6 +1204,17 @@ SolverResult CorotationalHexFem::solveStatic(int maxIterations, double relativeT
 int CorotationalHexFem::factorizationCount() const
 {
   return System->factorizations;
+}
+
+int CorotationalHexFem::synchronousFactorizationCount() const
+{
+  return System->synchronousFactorizations;
+}
+
+void CorotationalHexFem::setBackgroundFactorizationHook(std::function<void()> hook)
+{
+  cancelBackgroundRefactorization(); // a running worker holds the old hook
+  System->backgroundHook = std::move(hook);
 }
 
 std::vector<Vector3> CorotationalHexFem::elasticForces() const

@@ -21,6 +21,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,9 +31,9 @@ namespace thintissue
 
 enum class LinearSolverKind
 {
-  /// Sparse LDL^T (CHOLMOD, simplicial: with Debian's reference BLAS the
-  /// supernodal factorization is slower at these sizes), pattern analysed
-  /// once, refactorized every step.
+  /// Sparse Cholesky (CHOLMOD), pattern analysed once, refactorized every
+  /// step: simplicial LDL^T below CorotationalHexFemSettings::
+  /// supernodalThreshold unknowns, supernodal LL^T (dense BLAS blocks) above.
   Cholmod,
   /// Conjugate gradient with a Jacobi preconditioner, warm-started from the
   /// previous step's velocity change.
@@ -41,7 +42,9 @@ enum class LinearSolverKind
   /// earlier step's matrix, refactorized only when the iterations exceed
   /// `refactorizationIterations`: the rotations change little from step to
   /// step, so a stale exact factor converges in a few iterations and the
-  /// factorization cost is paid rarely.
+  /// factorization cost is paid rarely. From
+  /// `backgroundRefactorizationThreshold` unknowns the refactorization runs
+  /// on a worker thread while the steps go on (see the settings).
   StaleFactorConjugateGradient,
   /// StaleFactorConjugateGradient up to AutomaticDirectLimit degrees of
   /// freedom (measured fastest there: `ThinTissueBench --suite fem`), Jacobi
@@ -52,6 +55,21 @@ enum class LinearSolverKind
 
 /// Degrees of freedom up to which Automatic factorizes.
 constexpr int AutomaticDirectLimit = 15000;
+
+/// Fill-reducing ordering of the CHOLMOD factor.
+enum class FactorOrdering
+{
+  /// Approximate minimum degree.
+  MinimumDegree,
+  /// METIS nested dissection.
+  Metis,
+  /// CHOLMOD's nested dissection (METIS bisections, constrained minimum
+  /// degree on the parts).
+  NestedDissection,
+  /// CHOLMOD's default: minimum degree, METIS as well when its fill is high,
+  /// keeping the better.
+  CholmodDefault
+};
 
 struct CorotationalHexFemSettings
 {
@@ -75,6 +93,21 @@ struct CorotationalHexFemSettings
   /// on the knee of table 6-2 (meniscus, 360 unknowns): without it about 6
   /// iterations per step, with 20 about 2.
   int staleFactorIterationBudget = 20;
+  /// Unknowns from which CHOLMOD factorizes supernodally (LL^T on dense
+  /// BLAS blocks) instead of simplicial LDL^T. Not negative.
+  int supernodalThreshold = 3000;
+  FactorOrdering factorOrdering = FactorOrdering::MinimumDegree;
+  /// Unknowns from which StaleFactorConjugateGradient refactorizes on a
+  /// worker thread instead of inside the step. Not negative.
+  int backgroundRefactorizationThreshold = 3000;
+  /// Deterministic background refresh: a refactorization started at step k
+  /// (of step k's matrix) is swapped in at step k + lag, waiting for it if
+  /// it has not finished -- never "whenever it is ready", so that replays
+  /// are exact. At least 1.
+  int backgroundRefactorizationLag = 4;
+  /// With a background refresh, the iterations a stale factor may take
+  /// before the step gives it up and refactorizes synchronously. At least 1.
+  int staleFactorIterationCap = 40;
 };
 
 /// A penalty contact on a point embedded in a hexahedron (thesis 5.1,
@@ -215,8 +248,14 @@ public:
   /// of the rest shape), one per node.
   std::vector<Vector3> elasticForces() const;
   /// Sparse factorizations done so far (the stale-factor solver reuses one
-  /// across many steps).
+  /// across many steps), in the step and in the background.
   int factorizationCount() const;
+  /// Of those, the ones done inside a step (the first, after a topology
+  /// change, and when a stale factor no longer converged).
+  int synchronousFactorizationCount() const;
+  /// Called on the worker thread before each background factorization: a
+  /// test delays it to check that results do not depend on thread timing.
+  void setBackgroundFactorizationHook(std::function<void()> hook);
 
   // --- Topology changes (cutting) -----------------------------------------
   /// Room for this many nodes and hexahedra, so that the topology changes
@@ -284,6 +323,19 @@ private:
   bool solveSystem(Eigen::VectorXd& solution, int& iterations, std::string& message);
   bool factorize(std::string& message);
   bool solveWithStaleFactor(Eigen::VectorXd& solution, int& iterations, std::string& message);
+  /// Preconditioned conjugate gradients with the present factor, from the
+  /// previous solution, at most `limit` iterations; true if converged.
+  bool iterateWithFactor(Eigen::VectorXd& solution, int limit, int& iterations);
+  /// Whether this step's stale factor is refreshed on a worker thread.
+  bool refreshesInBackground() const;
+  /// Starts refactorizing the current matrix on a worker thread, to be
+  /// swapped in `backgroundRefactorizationLag` steps later (no-op if one runs).
+  void startBackgroundRefactorization();
+  /// At the step a background refactorization is due: waits for it and
+  /// swaps it in.
+  void landBackgroundRefactorization();
+  /// Waits for a running background refactorization and drops it.
+  void cancelBackgroundRefactorization();
   /// Adds the linearised contacts to the matrix and the right-hand side.
   void assembleContacts(double h);
 
