@@ -10,7 +10,7 @@ THINTISSUE_BUILD="${THINTISSUE_BUILD:-$THINTISSUE_ROOT/build}"
 THINTISSUE_PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
   libvtk9-dev libvtk9-qt-dev python3-vtk9 python3 mpi-default-dev
-  libeigen3-dev libsuitesparse-dev libcgal-dev qtbase5-dev libassimp-dev
+  libeigen3-dev libsuitesparse-dev libopenblas0-pthread libcgal-dev qtbase5-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libtbb-dev
   xvfb xauth
 )

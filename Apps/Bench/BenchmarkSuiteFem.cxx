@@ -227,6 +227,7 @@ THINTISSUE_BENCHMARK_SUITE(femSuite,
   {
     reporter.skip("steak", steak + " not found");
   }
+  useOneBlasThread(); // what the solver does at its first factorization
   const BlasLibrary blas = loadedBlasLibrary();
   reporter.report(
     "BLAS under CHOLMOD: " + blas.name + " " + blas.configuration + " (" + blas.path + ")",

@@ -1,5 +1,6 @@
 #include "CorotationalHexFem.h"
 
+#include "LinearAlgebraLibrary.h"
 #include "ThinTissueError.h"
 
 #include <Eigen/CholmodSupport>
@@ -77,11 +78,18 @@ public:
   {
     if (!Analysed)
     {
+      useOneBlasThread();
       const bool supernodal = matrix.rows() >= settings.supernodalThreshold;
       Decomposition.setMode(supernodal ? Eigen::CholmodSupernodalLLt : Eigen::CholmodLDLt);
       cholmod_common& common = Decomposition.cholmod();
-      common.nmethods = settings.factorOrdering == FactorOrdering::CholmodDefault ? 0 : 1;
-      common.method[0].ordering = orderingCode(settings.factorOrdering);
+      FactorOrdering ordering = settings.factorOrdering;
+      if (ordering == FactorOrdering::Automatic)
+      {
+        ordering = matrix.rows() >= AutomaticMetisLimit ? FactorOrdering::Metis
+                                                        : FactorOrdering::MinimumDegree;
+      }
+      common.nmethods = ordering == FactorOrdering::CholmodDefault ? 0 : 1;
+      common.method[0].ordering = orderingCode(ordering);
       common.postorder = 1;
       Decomposition.analyzePattern(matrix);
       Analysed = true;

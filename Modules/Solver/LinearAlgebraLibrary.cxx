@@ -4,19 +4,35 @@
 
 #include <dlfcn.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <mutex>
 
 namespace thintissue
 {
 
+namespace
+{
+/// A function of the loaded BLAS, or null. CHOLMOD depends on libblas.so.3
+/// (Debian's alternative); a process that loaded the solver privately
+/// (Python) still has it loaded under that name. The handle is released at
+/// once: CHOLMOD keeps the library loaded, so the address stays valid.
+void* blasSymbol(const char* name)
+{
+  void* handle = dlopen("libblas.so.3", RTLD_LAZY | RTLD_NOLOAD);
+  void* symbol = dlsym(handle != nullptr ? handle : RTLD_DEFAULT, name);
+  if (handle != nullptr)
+  {
+    dlclose(handle);
+  }
+  return symbol;
+}
+} // namespace
+
 BlasLibrary loadedBlasLibrary()
 {
-  // CHOLMOD depends on libblas.so.3 (Debian's alternative); a process that
-  // loaded the solver privately (Python) still has it loaded under that name.
-  void* handle = dlopen("libblas.so.3", RTLD_LAZY | RTLD_NOLOAD);
-  void* scope = handle != nullptr ? handle : RTLD_DEFAULT;
   Dl_info info{};
-  void* gemm = dlsym(scope, "dgemm_");
+  void* gemm = blasSymbol("dgemm_");
   if (gemm == nullptr || dladdr(gemm, &info) == 0 || info.dli_fname == nullptr)
   {
     throw Error("linear algebra: no BLAS is loaded (dgemm_ not found in any library)");
@@ -28,12 +44,8 @@ BlasLibrary loadedBlasLibrary()
   // OpenBLAS names itself; the reference BLAS has no such function.
   using ConfigurationFunction = char* (*)();
   using ThreadsFunction = int (*)();
-  auto configuration = reinterpret_cast<ConfigurationFunction>(dlsym(scope, "openblas_get_config"));
-  auto threads = reinterpret_cast<ThreadsFunction>(dlsym(scope, "openblas_get_num_threads"));
-  if (handle != nullptr)
-  {
-    dlclose(handle); // drops the reference dlopen took; the library stays loaded
-  }
+  auto configuration = reinterpret_cast<ConfigurationFunction>(blasSymbol("openblas_get_config"));
+  auto threads = reinterpret_cast<ThreadsFunction>(blasSymbol("openblas_get_num_threads"));
   if (configuration != nullptr)
   {
     library.name = "OpenBLAS";
@@ -45,6 +57,26 @@ BlasLibrary loadedBlasLibrary()
     library.name = library.path.find("/blas/") != std::string::npos ? "reference BLAS" : "unknown";
   }
   return library;
+}
+
+void useOneBlasThread()
+{
+  static std::once_flag once;
+  std::call_once(once,
+    []
+    {
+      if (std::getenv("OPENBLAS_NUM_THREADS") != nullptr)
+      {
+        return; // the user's choice
+      }
+      using SetThreadsFunction = void (*)(int);
+      auto setThreads =
+        reinterpret_cast<SetThreadsFunction>(blasSymbol("openblas_set_num_threads"));
+      if (setThreads != nullptr)
+      {
+        setThreads(1);
+      }
+    });
 }
 
 } // namespace thintissue

@@ -28,6 +28,14 @@ struct BlasLibrary
 /// Error if no BLAS can be found in the process.
 THINTISSUESOLVER_EXPORT BlasLibrary loadedBlasLibrary();
 
+/// Once per process: a multithreaded OpenBLAS is set to one thread, unless
+/// OPENBLAS_NUM_THREADS says otherwise. The solver's parallelism is its own
+/// (the background refactorization beside the physics, haptics and render
+/// threads); OpenBLAS threads that spin for work on a busy 2-core machine
+/// made the supernodal factorization of the 1,000-hexahedra block cost 63
+/// ms of CPU against 33 with one thread (and up to 30 times the wall time).
+THINTISSUESOLVER_EXPORT void useOneBlasThread();
+
 } // namespace thintissue
 
 #endif
