@@ -4,7 +4,6 @@
 #include "ThinTissueError.h"
 
 #include <Eigen/CholmodSupport>
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
 
 #include <algorithm>
@@ -170,7 +169,12 @@ struct CorotationalHexFem::LinearSystem
   /// of its staleness, paid down by refactorizing (see Settings).
   int excessIterations = 0;
   Eigen::VectorXd residual, direction, preconditioned, product;
-  Eigen::ConjugateGradient<SparseMatrix, Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+  /// Per free node, the value indices of its 3x3 diagonal block's upper
+  /// triangle (00 01 02 11 12 22), and the blocks' inverses: the nodal
+  /// block-Jacobi preconditioner of the conjugate gradients.
+  std::vector<std::array<int, 6>> nodalBlockOffsets;
+  std::vector<Eigen::Matrix3d> nodalBlockInverses;
+  bool nodalBlocksInverted = false; // of the current matrix
 };
 
 CorotationalHexFem::CorotationalHexFem(const HexahedralMesh& mesh,
@@ -543,6 +547,18 @@ void CorotationalHexFem::prepareSystem()
   {
     s.diagonalOffsets[d] = offsetOf(d, d);
   }
+  s.nodalBlockOffsets.resize(s.dofCount / 3);
+  s.nodalBlockInverses.resize(s.dofCount / 3);
+  for (int node = 0; node < s.dofCount / 3; ++node)
+  {
+    const int d = 3 * node;
+    s.nodalBlockOffsets[node] = { offsetOf(d, d),
+      offsetOf(d, d + 1),
+      offsetOf(d, d + 2),
+      offsetOf(d + 1, d + 1),
+      offsetOf(d + 1, d + 2),
+      offsetOf(d + 2, d + 2) };
+  }
   s.elementOffsets.resize(Elements.size());
   for (std::size_t e = 0; e < Elements.size(); ++e)
   {
@@ -656,6 +672,7 @@ void CorotationalHexFem::assemble(double stiffnessScale,
   std::fill(forces.begin(), forces.end(), Vector3::Zero());
   double* values = s.matrix.valuePtr();
   std::fill(values, values + s.matrix.nonZeros(), 0.0);
+  s.nodalBlocksInverted = false;
   for (std::size_t e = 0; e < Elements.size(); ++e)
   {
     Element& element = Elements[e];
@@ -733,15 +750,15 @@ bool CorotationalHexFem::solveSystem(Eigen::VectorXd& solution,
   }
   else
   {
-    s.cg.setTolerance(Settings.conjugateGradientTolerance);
-    s.cg.setMaxIterations(Settings.conjugateGradientMaxIterations);
-    s.cg.compute(s.matrix);
-    solution = s.cg.solveWithGuess(s.rhs, s.previousSolution);
-    iterations = static_cast<int>(s.cg.iterations());
-    if (s.cg.info() != Eigen::Success)
+    invertNodalBlocks();
+    if (!iteratePreconditioned(solution,
+          Settings.conjugateGradientMaxIterations,
+          iterations,
+          [this](const Eigen::VectorXd& r, Eigen::VectorXd& z) { applyNodalBlockJacobi(r, z); }))
     {
       message = "conjugate gradient did not converge in " + std::to_string(iterations) +
-                " iterations (error " + std::to_string(s.cg.error()) + ")";
+                " iterations (relative residual " +
+                std::to_string(s.residual.norm() / s.rhs.norm()) + ")";
       return false;
     }
   }
@@ -904,7 +921,10 @@ void CorotationalHexFem::cancelBackgroundRefactorization()
   refresh.dueStep = -1;
 }
 
-bool CorotationalHexFem::iterateWithFactor(Eigen::VectorXd& x, int limit, int& iterations)
+bool CorotationalHexFem::iteratePreconditioned(Eigen::VectorXd& x,
+  int limit,
+  int& iterations,
+  const Preconditioner& precondition)
 {
   LinearSystem& s = *System;
   const auto A = s.matrix.selfadjointView<Eigen::Upper>();
@@ -912,7 +932,7 @@ bool CorotationalHexFem::iterateWithFactor(Eigen::VectorXd& x, int limit, int& i
   x = s.previousSolution;
   s.product.noalias() = A * x;
   s.residual = s.rhs - s.product;
-  s.factor->solve(s.residual, s.preconditioned);
+  precondition(s.residual, s.preconditioned);
   s.direction = s.preconditioned;
   double rho = s.residual.dot(s.preconditioned);
   for (iterations = 0; iterations < limit && s.residual.norm() > target; ++iterations)
@@ -921,12 +941,42 @@ bool CorotationalHexFem::iterateWithFactor(Eigen::VectorXd& x, int limit, int& i
     const double step = rho / s.direction.dot(s.product);
     x += step * s.direction;
     s.residual -= step * s.product;
-    s.factor->solve(s.residual, s.preconditioned);
+    precondition(s.residual, s.preconditioned);
     const double next = s.residual.dot(s.preconditioned);
     s.direction = s.preconditioned + (next / rho) * s.direction;
     rho = next;
   }
   return s.residual.norm() <= target;
+}
+
+void CorotationalHexFem::invertNodalBlocks()
+{
+  LinearSystem& s = *System;
+  if (s.nodalBlocksInverted)
+  {
+    return;
+  }
+  s.nodalBlocksInverted = true;
+  const double* values = s.matrix.valuePtr();
+  for (std::size_t node = 0; node < s.nodalBlockOffsets.size(); ++node)
+  {
+    const auto& o = s.nodalBlockOffsets[node];
+    Eigen::Matrix3d block;
+    block << values[o[0]], values[o[1]], values[o[2]], values[o[1]], values[o[3]], values[o[4]],
+      values[o[2]], values[o[4]], values[o[5]];
+    s.nodalBlockInverses[node] = block.inverse(); // positive definite: M + h D + h^2 K
+  }
+}
+
+void CorotationalHexFem::applyNodalBlockJacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const
+{
+  const LinearSystem& s = *System;
+  z.resize(r.size());
+  for (std::size_t node = 0; node < s.nodalBlockInverses.size(); ++node)
+  {
+    const Eigen::Index d = static_cast<Eigen::Index>(3 * node);
+    z.segment<3>(d).noalias() = s.nodalBlockInverses[node] * r.segment<3>(d);
+  }
 }
 
 bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
@@ -957,7 +1007,10 @@ bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
     const int staleLimit =
       background ? Settings.staleFactorIterationCap : Settings.refactorizationIterations;
     const int limit = attempt == 0 ? staleLimit : Settings.conjugateGradientMaxIterations;
-    if (iterateWithFactor(x, limit, iterations))
+    if (iteratePreconditioned(x,
+          limit,
+          iterations,
+          [&s](const Eigen::VectorXd& r, Eigen::VectorXd& z) { s.factor->solve(r, z); }))
     {
       s.excessIterations += std::max(0, iterations - 1);
       if (background && (iterations > Settings.refactorizationIterations ||
@@ -1067,7 +1120,8 @@ bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
     (Settings.solver == LinearSolverKind::Automatic && s.dofCount > AutomaticDirectLimit);
   if (jacobi)
   {
-    z = r.cwiseQuotient(s.matrix.diagonal());
+    invertNodalBlocks(); // once per matrix
+    applyNodalBlockJacobi(r, z);
     return true;
   }
   if (!s.factorValid && !factorize(message))

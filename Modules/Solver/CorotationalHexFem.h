@@ -35,8 +35,9 @@ enum class LinearSolverKind
   /// step: simplicial LDL^T below CorotationalHexFemSettings::
   /// supernodalThreshold unknowns, supernodal LL^T (dense BLAS blocks) above.
   Cholmod,
-  /// Conjugate gradient with a Jacobi preconditioner, warm-started from the
-  /// previous step's velocity change.
+  /// Conjugate gradient with a nodal block-Jacobi preconditioner (the 3x3
+  /// diagonal block of each node inverted), warm-started from the previous
+  /// step's velocity change.
   ConjugateGradient,
   /// Conjugate gradient preconditioned by a CHOLMOD factorization of an
   /// earlier step's matrix, refactorized only when the iterations exceed
@@ -336,9 +337,17 @@ private:
   bool solveSystem(Eigen::VectorXd& solution, int& iterations, std::string& message);
   bool factorize(std::string& message);
   bool solveWithStaleFactor(Eigen::VectorXd& solution, int& iterations, std::string& message);
-  /// Preconditioned conjugate gradients with the present factor, from the
-  /// previous solution, at most `limit` iterations; true if converged.
-  bool iterateWithFactor(Eigen::VectorXd& solution, int limit, int& iterations);
+  using Preconditioner = std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>;
+  /// Preconditioned conjugate gradients from the previous solution, at most
+  /// `limit` iterations, until |r| <= tolerance |b|; true if converged.
+  bool iteratePreconditioned(Eigen::VectorXd& solution,
+    int limit,
+    int& iterations,
+    const Preconditioner& precondition);
+  /// Inverts the 3x3 diagonal blocks of the current matrix.
+  void invertNodalBlocks();
+  /// z = (block diagonal of A)^-1 r.
+  void applyNodalBlockJacobi(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
   /// Whether this step's stale factor is refreshed on a worker thread.
   bool refreshesInBackground() const;
   /// Starts refactorizing the current matrix on a worker thread, to be
