@@ -162,6 +162,84 @@ inline EdgeBindingOffset largestEdgeBindingOffset(const CuttableVisualMesh& visu
   return largest;
 }
 
+/// What is open or pinched in a visual mesh that is not a closed manifold:
+/// the validation report, the first edges with other than two triangles,
+/// the triangles around the first pinched vertex and the first surface
+/// sliver, each with the bindings of its vertices.
+inline ::testing::AssertionResult openVisualMeshFailure(const CuttableVisualMesh& visual,
+  const CuttableCollisionMesh& collision,
+  const MeshValidationReport& report)
+{
+  const TriangleMesh& mesh = visual.mesh();
+  auto failure = ::testing::AssertionFailure() << "visual mesh is not a closed manifold:\n"
+                                               << report.toString();
+  std::map<std::pair<int, int>, std::vector<int>> edgeTriangles;
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      edgeTriangles[{ std::min(a, b), std::max(a, b) }].push_back(static_cast<int>(t));
+    }
+  int shown = 0;
+  auto describe = [&](int v)
+  {
+    const VisualVertexBinding& b = visual.bindings()[v];
+    std::ostringstream text;
+    text << v << "[kind " << int(b.kind) << " element " << b.element;
+    if (b.kind == BindingKind::CollisionEdge)
+      text << " (" << visual.collisionEdges()[b.element][0] << " "
+           << visual.collisionEdges()[b.element][1] << ")";
+    text << " side " << b.side << " t " << b.parameters[1] << "]";
+    return text.str();
+  };
+  for (const auto& [edge, triangles] : edgeTriangles)
+  {
+    if (triangles.size() == 2 || shown++ > 8)
+      continue;
+    failure << "\nedge " << describe(edge.first) << "-" << describe(edge.second) << ":";
+    for (int t : triangles)
+      failure << " triangle " << t << " (" << mesh.triangles[t][0] << " " << mesh.triangles[t][1]
+              << " " << mesh.triangles[t][2] << ", material " << int(visual.triangleMaterials()[t])
+              << ", region " << visual.triangleRegions()[t] << " = ("
+              << collision.triangles()[visual.triangleRegions()[t]][0] << " "
+              << collision.triangles()[visual.triangleRegions()[t]][1] << " "
+              << collision.triangles()[visual.triangleRegions()[t]][2] << "), side "
+              << int(visual.triangleSides()[t]) << ")";
+  }
+  if (report.nonManifoldVertices.count > 0)
+  {
+    // The triangles around the first pinched vertex.
+    const std::string& where = report.nonManifoldVertices.firstLocation;
+    const int v = std::atoi(where.substr(where.find_last_of(' ') + 1).c_str());
+    failure << "\npinched vertex " << describe(v) << ":";
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+      for (int w : mesh.triangles[t])
+        if (w == v)
+          failure << "\n  triangle " << t << " (" << describe(mesh.triangles[t][0]) << " "
+                  << describe(mesh.triangles[t][1]) << " " << describe(mesh.triangles[t][2])
+                  << ", material " << int(visual.triangleMaterials()[t]) << ", region "
+                  << visual.triangleRegions()[t] << ", side " << int(visual.triangleSides()[t])
+                  << ")";
+  }
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    if (mesh.triangleArea(t) > 0.0 || visual.triangleMaterials()[t] != VisualMaterial::Surface)
+      continue;
+    failure << "\nzero-area triangle " << t << " (material " << int(visual.triangleMaterials()[t])
+            << ", region " << visual.triangleRegions()[t] << ", side "
+            << int(visual.triangleSides()[t]) << "):";
+    for (int v : mesh.triangles[t])
+    {
+      const VisualVertexBinding& b = visual.bindings()[v];
+      failure << " " << v << " [kind " << int(b.kind) << " element " << b.element << " side "
+              << b.side << " t " << b.parameters.transpose() << " at "
+              << mesh.positions[v].transpose() << "]";
+    }
+    break;
+  }
+  return failure;
+}
+
 /// Visual mesh after cuts (5.3.2 - 5.3.4): closed, manifold, consistently
 /// oriented, every vertex used, no triangle of zero area but slivers of the
 /// cut surface; every vertex bound to a live collision
@@ -193,75 +271,7 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
                       report.inconsistentlyOrientedEdges.count == 0 &&
                       report.duplicateTriangles.count == 0 && surfaceSlivers == 0;
   if (!closed || report.unreferencedVertices.count > 0)
-  {
-    auto failure = ::testing::AssertionFailure() << "visual mesh is not a closed manifold:\n"
-                                                 << report.toString();
-    std::map<std::pair<int, int>, std::vector<int>> edgeTriangles;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-      for (int k = 0; k < 3; ++k)
-      {
-        const int a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-        edgeTriangles[{ std::min(a, b), std::max(a, b) }].push_back(static_cast<int>(t));
-      }
-    int shown = 0;
-    auto describe = [&](int v)
-    {
-      const VisualVertexBinding& b = visual.bindings()[v];
-      std::ostringstream text;
-      text << v << "[kind " << int(b.kind) << " element " << b.element;
-      if (b.kind == BindingKind::CollisionEdge)
-        text << " (" << visual.collisionEdges()[b.element][0] << " "
-             << visual.collisionEdges()[b.element][1] << ")";
-      text << " side " << b.side << " t " << b.parameters[1] << "]";
-      return text.str();
-    };
-    for (const auto& [edge, triangles] : edgeTriangles)
-    {
-      if (triangles.size() == 2 || shown++ > 8)
-        continue;
-      failure << "\nedge " << describe(edge.first) << "-" << describe(edge.second) << ":";
-      for (int t : triangles)
-        failure << " triangle " << t << " (" << mesh.triangles[t][0] << " " << mesh.triangles[t][1]
-                << " " << mesh.triangles[t][2] << ", material "
-                << int(visual.triangleMaterials()[t]) << ", region " << visual.triangleRegions()[t]
-                << " = (" << collision.triangles()[visual.triangleRegions()[t]][0] << " "
-                << collision.triangles()[visual.triangleRegions()[t]][1] << " "
-                << collision.triangles()[visual.triangleRegions()[t]][2] << "), side "
-                << int(visual.triangleSides()[t]) << ")";
-    }
-    if (report.nonManifoldVertices.count > 0)
-    {
-      // The triangles around the first pinched vertex.
-      const std::string& where = report.nonManifoldVertices.firstLocation;
-      const int v = std::atoi(where.substr(where.find_last_of(' ') + 1).c_str());
-      failure << "\npinched vertex " << describe(v) << ":";
-      for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-        for (int w : mesh.triangles[t])
-          if (w == v)
-            failure << "\n  triangle " << t << " (" << describe(mesh.triangles[t][0]) << " "
-                    << describe(mesh.triangles[t][1]) << " " << describe(mesh.triangles[t][2])
-                    << ", material " << int(visual.triangleMaterials()[t]) << ", region "
-                    << visual.triangleRegions()[t] << ", side " << int(visual.triangleSides()[t])
-                    << ")";
-    }
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-    {
-      if (mesh.triangleArea(t) > 0.0 || visual.triangleMaterials()[t] != VisualMaterial::Surface)
-        continue;
-      failure << "\nzero-area triangle " << t << " (material " << int(visual.triangleMaterials()[t])
-              << ", region " << visual.triangleRegions()[t] << ", side "
-              << int(visual.triangleSides()[t]) << "):";
-      for (int v : mesh.triangles[t])
-      {
-        const VisualVertexBinding& b = visual.bindings()[v];
-        failure << " " << v << " [kind " << int(b.kind) << " element " << b.element << " side "
-                << b.side << " t " << b.parameters.transpose() << " at "
-                << mesh.positions[v].transpose() << "]";
-      }
-      break;
-    }
-    return failure;
-  }
+    return openVisualMeshFailure(visual, collision, report);
   const auto& edges = visual.collisionEdges();
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
   {
