@@ -348,39 +348,7 @@ void TrainingScene::takeCut(const InstrumentActionResult& done)
     Wrinkles->followCut(*Cutter, done.report);
   }
   rebuildCollisionMesh();
-  if (done.report.removedPieces > 0)
-  {
-    retireRemovedHexahedra();
-  }
   measureRim();
-}
-
-void TrainingScene::retireRemovedHexahedra()
-{
-  // A removed piece's hexahedra stay in the solver with their nodes held
-  // still (TissueCutter), and each still cost its rotation and assembly
-  // every step: the shaver's 41 bites left 1,012 hexahedra of which about
-  // 45 carry tissue, and the FEM step took half the replay. One whose
-  // nodes are all held and that carries no collision vertex moves nothing
-  // and receives no contact: it leaves the solver (the system, made of
-  // the free nodes, is the same).
-  const std::vector<Hexahedron>& hexahedra = Cutter->simulation().hexahedra;
-  std::vector<char> carries(hexahedra.size(), 0);
-  const CuttableCollisionMesh& collision = Cutter->collision();
-  for (std::size_t t = 0; t < collision.triangleCount(); ++t)
-  {
-    if (Cutter->isActive(static_cast<int>(t)))
-      for (int v : collision.triangles()[t])
-        carries[Cutter->collisionEmbedding().hexahedron(v)] = 1;
-  }
-  for (std::size_t h = 0; h < hexahedra.size(); ++h)
-  {
-    const bool held = std::all_of(hexahedra[h].begin(),
-      hexahedra[h].end(),
-      [this](int node) { return Fem->isFixed(static_cast<std::size_t>(node)); });
-    if (!carries[h] && held && Fem->isActive(h))
-      Fem->removeHexahedron(h);
-  }
 }
 
 bool TrainingScene::applySettings(const ScenarioDescription& changed)

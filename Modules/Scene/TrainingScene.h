@@ -120,7 +120,6 @@ private:
   void biteAtLoad();
   void measureRim();
   void takeCut(const InstrumentActionResult& done);
-  void retireRemovedHexahedra();
   void buildWrinkles(const HexahedralMesh& hexahedra, const TriangleMesh& surface);
   void buildContacts();
   void rebuildCollisionMesh();

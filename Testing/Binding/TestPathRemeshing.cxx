@@ -262,19 +262,55 @@ double scaleOf(const TriangleMesh& mesh)
   return mesh.boundingBox().diagonal().norm();
 }
 
-/// Everything insertPaths promises about its result, for any input:
-/// indices, untouched triangles in place, every triangle non-degenerate,
-/// inside its parent and facing the same way, parents' areas kept, old
-/// vertices unchanged, texture coordinates / normals / attributes
-/// interpolated from the parent, consecutive path vertices joined by edges
-/// and lying on the input paths.
-::testing::AssertionResult isFaithfulRemeshing(const TriangleMesh& input,
-  const std::vector<SurfacePath>& paths,
-  const RemeshedSurface& result)
+/// An inserted vertex x at barycentric `lambda` in input triangle `parent`:
+/// its normal and point attributes interpolated from the parent's corners.
+::testing::AssertionResult insertedVertexIsInterpolated(const TriangleMesh& input,
+  const TriangleMesh& mesh,
+  int parent,
+  int x,
+  const Vector3& lambda)
+{
+  const Triangle& p = input.triangles[parent];
+  // Inserted vertices lie on an edge of the parent: interpolation.
+  if (input.hasNormals())
+  {
+    const Vector3 expected = (lambda[0] * input.normals[p[0]] + lambda[1] * input.normals[p[1]] +
+                              lambda[2] * input.normals[p[2]])
+                               .normalized();
+    if ((mesh.normals[x] - expected).norm() > 1e-9 ||
+        std::abs(mesh.normals[x].norm() - 1.0) > 1e-14)
+    {
+      return ::testing::AssertionFailure() << "normal of vertex " << x << " not interpolated";
+    }
+  }
+  for (const std::string& name : input.pointAttributes.names())
+  {
+    const AttributeArray& in = input.pointAttributes.get(name);
+    const AttributeArray& out = mesh.pointAttributes.get(name);
+    for (int component = 0; component < in.components; ++component)
+    {
+      double expected = 0.0;
+      double size = 0.0;
+      for (int corner = 0; corner < 3; ++corner)
+      {
+        expected += lambda[corner] * in.element(p[corner])[component];
+        size = std::max(size, std::abs(in.element(p[corner])[component]));
+      }
+      if (std::abs(out.element(x)[component] - expected) > 1e-12 * std::max(1.0, size))
+      {
+        return ::testing::AssertionFailure()
+               << "attribute " << name << " of vertex " << x << " not interpolated";
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+/// insertPaths' result keeps the input: consistent, sizes and kept data
+/// alike, old vertices and texture coordinates unchanged, vertex origins.
+::testing::AssertionResult keepsTheInput(const TriangleMesh& input, const RemeshedSurface& result)
 {
   const TriangleMesh& mesh = result.mesh;
-  const double scale = scaleOf(input);
-  const double tolerance = 1e-12 * scale;
   try
   {
     mesh.checkConsistency();
@@ -314,6 +350,19 @@ double scaleOf(const TriangleMesh& mesh)
       return ::testing::AssertionFailure() << "old texture coordinate " << i << " changed";
     }
   }
+  return ::testing::AssertionSuccess();
+}
+
+/// Every triangle non-degenerate, inside its parent in the documented order
+/// and facing the same way, texture coordinates and inserted vertices
+/// interpolated, untouched triangles in place, parents' areas covered.
+::testing::AssertionResult childrenAreFaithful(const TriangleMesh& input,
+  const RemeshedSurface& result)
+{
+  const TriangleMesh& mesh = result.mesh;
+  const double scale = scaleOf(input);
+  const double tolerance = 1e-12 * scale;
+  const std::size_t oldVertices = input.vertexCount();
   // Documented order: triangle t < input count comes from input triangle t,
   // the others from increasing input triangles.
   std::vector<int> children(input.triangleCount(), 0);
@@ -372,37 +421,10 @@ double scaleOf(const TriangleMesh& mesh)
       {
         continue;
       }
-      // Inserted vertices lie on an edge of the parent: interpolation.
-      if (input.hasNormals())
+      const auto interpolated = insertedVertexIsInterpolated(input, mesh, parent, x, lambda);
+      if (!interpolated)
       {
-        const Vector3 expected = (lambda[0] * input.normals[p[0]] +
-                                  lambda[1] * input.normals[p[1]] + lambda[2] * input.normals[p[2]])
-                                   .normalized();
-        if ((mesh.normals[x] - expected).norm() > 1e-9 ||
-            std::abs(mesh.normals[x].norm() - 1.0) > 1e-14)
-        {
-          return ::testing::AssertionFailure() << "normal of vertex " << x << " not interpolated";
-        }
-      }
-      for (const std::string& name : input.pointAttributes.names())
-      {
-        const AttributeArray& in = input.pointAttributes.get(name);
-        const AttributeArray& out = mesh.pointAttributes.get(name);
-        for (int component = 0; component < in.components; ++component)
-        {
-          double expected = 0.0;
-          double size = 0.0;
-          for (int corner = 0; corner < 3; ++corner)
-          {
-            expected += lambda[corner] * in.element(p[corner])[component];
-            size = std::max(size, std::abs(in.element(p[corner])[component]));
-          }
-          if (std::abs(out.element(x)[component] - expected) > 1e-12 * std::max(1.0, size))
-          {
-            return ::testing::AssertionFailure()
-                   << "attribute " << name << " of vertex " << x << " not interpolated";
-          }
-        }
+        return interpolated;
       }
     }
   }
@@ -429,6 +451,17 @@ double scaleOf(const TriangleMesh& mesh)
   {
     return ::testing::AssertionFailure() << "the area changed";
   }
+  return ::testing::AssertionSuccess();
+}
+
+/// Paths: one vertex list each, consecutive vertices distinct and joined by
+/// an edge, on the input path, with its ends.
+::testing::AssertionResult pathsAreFaithful(const TriangleMesh& input,
+  const std::vector<SurfacePath>& paths,
+  const RemeshedSurface& result)
+{
+  const TriangleMesh& mesh = result.mesh;
+  const double scale = scaleOf(input);
   // Paths: consecutive vertices distinct and joined by an edge, on the path.
   const TriangleMeshAdjacency adjacency(mesh);
   if (result.pathVertices.size() != paths.size())
@@ -485,6 +518,24 @@ double scaleOf(const TriangleMesh& mesh)
     }
   }
   return ::testing::AssertionSuccess();
+}
+
+/// Everything insertPaths promises about its result, for any input:
+/// indices, untouched triangles in place, every triangle non-degenerate,
+/// inside its parent and facing the same way, parents' areas kept, old
+/// vertices unchanged, texture coordinates / normals / attributes
+/// interpolated from the parent, consecutive path vertices joined by edges
+/// and lying on the input paths.
+::testing::AssertionResult isFaithfulRemeshing(const TriangleMesh& input,
+  const std::vector<SurfacePath>& paths,
+  const RemeshedSurface& result)
+{
+  auto faithful = keepsTheInput(input, result);
+  if (faithful)
+    faithful = childrenAreFaithful(input, result);
+  if (faithful)
+    faithful = pathsAreFaithful(input, paths, result);
+  return faithful;
 }
 
 ::testing::AssertionResult isClosedOriented(const TriangleMesh& mesh)

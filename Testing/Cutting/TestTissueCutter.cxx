@@ -359,6 +359,17 @@ TEST(TissueCutterSeparation, APieceCutFreeIsKeptDroppedOrHandedOver)
     EXPECT_EQ(report.handedOver.size(), handling == FreePieceHandling::HandOver ? 1u : 0u);
     const auto visualActive = cutter.activeVisualTriangles();
     EXPECT_EQ(std::count(visualActive.begin(), visualActive.end(), 0) > 0, removed);
+    // A removed piece's hexahedra have left the solver, the rest's have not.
+    for (std::size_t h = 0; h < cutter.simulation().hexahedronCount(); ++h)
+    {
+      const auto& held = cutter.branches().trianglesOf(static_cast<int>(h));
+      const bool carriesTissue =
+        std::any_of(held.begin(), held.end(), [&](int t) { return cutter.isActive(t); });
+      if (!held.empty())
+      {
+        EXPECT_EQ(fem.isActive(h), carriesTissue) << "hexahedron " << h;
+      }
+    }
     // A removed piece is held still: pushing everything up moves the rest only.
     for (std::size_t n = 0; n < fem.nodeCount(); ++n)
       fem.setExternalForce(n, Vector3(0, 0, 1e-4));

@@ -4,6 +4,7 @@
 // built, before the bite) integrated along rays across the jaws, through
 // the prism of the bite outline from below the fixed jaw to the open moving
 // jaw, on a fine grid over the outline (thesis 6.4.2).
+#include "BoxSurface.h"
 #include "InstrumentAction.h"
 #include "OperationTestHelpers.h"
 
@@ -186,28 +187,15 @@ TEST(BiteVolume, ARemovedBiteIsWhatTheJawsEnclosedWithinTheMeshResolution)
 // over part of it, the prism clipped across.
 TEST(BiteVolume, TheEnclosedVolumeOfACubeIsItsPrismPart)
 {
-  std::vector<Vector3> corners;
-  for (int k = 0; k < 8; ++k)
-    corners.emplace_back(2.0 * (k & 1), 2.0 * ((k >> 1) & 1), 2.0 * ((k >> 2) & 1));
-  const std::vector<Triangle> faces = { { 0, 2, 1 },
-    { 1, 2, 3 },
-    { 4, 5, 6 },
-    { 5, 7, 6 },
-    { 0, 1, 4 },
-    { 1, 5, 4 },
-    { 2, 6, 3 },
-    { 3, 6, 7 },
-    { 0, 4, 2 },
-    { 2, 4, 6 },
-    { 1, 3, 5 },
-    { 3, 7, 5 } };
+  const TriangleMesh cube =
+    thintissue::testing::boxSurface(Vector3::Zero(), Vector3::Constant(2.0));
   const std::vector<Vector3> square = {
     Vector3(0.0, 0.5, 0.5), Vector3(0.0, 1.5, 0.5), Vector3(0.0, 1.5, 1.5), Vector3(0.0, 0.5, 1.5)
   };
-  EXPECT_NEAR(enclosedVolume(corners, faces, square, -1.0, 1.5, 0.01), 1.5, 0.02);
+  EXPECT_NEAR(enclosedVolume(cube.positions, cube.triangles, square, -1.0, 1.5, 0.01), 1.5, 0.02);
   // Half the outline past the cube's side: half the volume.
   std::vector<Vector3> past = square;
   for (Vector3& x : past)
     x.y() += 1.0;
-  EXPECT_NEAR(enclosedVolume(corners, faces, past, -5.0, 5.0, 0.01), 1.0, 0.02);
+  EXPECT_NEAR(enclosedVolume(cube.positions, cube.triangles, past, -5.0, 5.0, 0.01), 1.0, 0.02);
 }

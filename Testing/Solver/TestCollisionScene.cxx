@@ -1,6 +1,7 @@
 // Collision scene: rigid tools (spheres, capsules, triangle meshes) moved by
 // a pose, static obstacles, tissue-tissue contacts, broad phase, friction,
 // tool force and torque, and the meniscus pressed onto the tibia (table 6-2).
+#include "BoxSurface.h"
 #include "CollisionScene.h"
 #include "KneeModels.h"
 #include "MeniscusModel.h"
@@ -15,6 +16,7 @@
 
 using namespace thintissue;
 using thintissue::test::softTissue;
+using thintissue::testing::boxSurface;
 
 namespace
 {
@@ -46,31 +48,6 @@ void translateModel(TissueModel& model, const Vector3& offset)
   {
     p += offset;
   }
-}
-
-/// A closed axis-aligned box surface (12 outward triangles).
-TriangleMesh boxSurface(const Vector3& low, const Vector3& high)
-{
-  TriangleMesh box;
-  box.name = "box";
-  for (int k = 0; k < 8; ++k)
-  {
-    box.positions.emplace_back(
-      (k & 1) ? high.x() : low.x(), (k & 2) ? high.y() : low.y(), (k & 4) ? high.z() : low.z());
-  }
-  box.triangles = { { 0, 2, 1 },
-    { 1, 2, 3 },
-    { 4, 5, 6 },
-    { 5, 7, 6 },
-    { 0, 1, 4 },
-    { 1, 5, 4 },
-    { 2, 6, 3 },
-    { 3, 6, 7 },
-    { 0, 4, 2 },
-    { 2, 4, 6 },
-    { 1, 3, 5 },
-    { 3, 7, 5 } };
-  return box;
 }
 
 /// A flat square in the plane z = 0 made of 2 n^2 triangles (an obstacle).
