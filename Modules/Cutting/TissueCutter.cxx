@@ -39,6 +39,23 @@ CuttableCollisionMesh makeCuttable(const TriangleMesh& collision, const std::str
     collision.name, collision.positions, collision.triangles, radius.values);
 }
 
+/// The settings the cutter checks itself (the visual mesh checks its own).
+void checkCutterSettings(const std::string& name, const TissueCutterSettings& settings)
+{
+  const std::string label = "tissue cutter for '" + name + "'";
+  if (!(settings.collision.snapFraction >= 0.0 && settings.collision.snapFraction < 0.5))
+  {
+    throw InvalidInputError(label + ": snap fraction " +
+                            std::to_string(settings.collision.snapFraction) +
+                            " is not in [0, 0.5)");
+  }
+  if (!(settings.fragmentAreaFraction >= 0.0 && settings.fragmentAreaFraction < 1.0))
+  {
+    throw InvalidInputError(label + ": fragment area fraction " +
+                            std::to_string(settings.fragmentAreaFraction) + " is not in [0, 1)");
+  }
+}
+
 TriangleMesh collisionOf(const VisualCollisionBinding& binding, const std::string& radiusName)
 {
   TriangleMesh collision;
@@ -88,6 +105,7 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
   , Simulation(simulation)
   , Solver(solver)
 {
+  checkCutterSettings(Collision.name(), settings);
   Simulation.checkConsistency();
   if (Simulation.hexahedronCount() == 0)
   {
@@ -129,6 +147,20 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
       CollisionEmbedding.setPoint(v, holder, CollisionEmbedding.localCoordinates(v));
     }
   }
+}
+
+void TissueCutter::setSettings(const TissueCutterSettings& settings)
+{
+  checkCutterSettings(Collision.name(), settings);
+  if (settings.radiusArrayName != Settings.radiusArrayName)
+  {
+    throw InvalidInputError("tissue cutter for '" + Collision.name() + "': radius array name '" +
+                            settings.radiusArrayName + "' (the cutter was made with '" +
+                            Settings.radiusArrayName + "')");
+  }
+  if (HasVisual)
+    Visual.setSettings(settings.visual); // checks before anything changes
+  Settings = settings;
 }
 
 std::vector<Vector3> TissueCutter::currentVisualPositions() const

@@ -136,6 +136,15 @@ public:
   /// on a bad blade (empty, NaN, degenerate).
   TissueCutReport cut(const Blade& blade);
 
+  /// The settings of the cuts to come, changed between cuts (a settings
+  /// panel): snapping, free-piece handling, fragment size and the visual
+  /// cut's (CuttableVisualMesh::setSettings). Throws InvalidInputError,
+  /// changing nothing, on bad values, on another radius array name (read
+  /// once, when the cutter was made) or on a new cut-surface row count once
+  /// the tissue has a cut surface.
+  void setSettings(const TissueCutterSettings& settings);
+  const TissueCutterSettings& settings() const { return Settings; }
+
   const CuttableCollisionMesh& collision() const { return Collision; }
   /// The hexahedra with their copies (rest nodes).
   const HexahedralMesh& simulation() const { return Simulation; }

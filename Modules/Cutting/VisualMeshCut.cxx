@@ -358,17 +358,11 @@ std::uint64_t CuttableVisualMesh::edgeKey(int a, int b)
   return (lo << 32) | hi;
 }
 
-CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
-  const VisualCutSettings& settings)
-  : Settings(settings)
-  , Mesh(binding.visual)
-  , Bindings(binding.vertices)
-  , Edges(binding.collisionEdges)
-  , TriangleRegion(binding.triangleRegion)
-  , TriangleSide(binding.triangleSide)
-  , Paired(binding.pairedVisualVertices)
+namespace
 {
-  const std::string label = "visual mesh '" + Mesh.name + "'";
+
+void checkSettings(const std::string& label, const VisualCutSettings& settings)
+{
   if (settings.cutSurfaceRows < 0)
   {
     throw InvalidInputError(
@@ -382,6 +376,22 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
                             std::to_string(settings.jaggedWavelength) +
                             " (must be >= 0 and > 0, finite)");
   }
+}
+
+} // namespace
+
+CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
+  const VisualCutSettings& settings)
+  : Settings(settings)
+  , Mesh(binding.visual)
+  , Bindings(binding.vertices)
+  , Edges(binding.collisionEdges)
+  , TriangleRegion(binding.triangleRegion)
+  , TriangleSide(binding.triangleSide)
+  , Paired(binding.pairedVisualVertices)
+{
+  const std::string label = "visual mesh '" + Mesh.name + "'";
+  checkSettings(label, settings);
   if (Bindings.size() != Mesh.vertexCount() || TriangleRegion.size() != Mesh.triangleCount() ||
       TriangleSide.size() != Mesh.triangleCount() ||
       Paired.size() != binding.collisionPositions.size())
@@ -421,6 +431,21 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
       paths.sides[p.side > 0 ? 1 : 0] = p.visualVertices;
     }
   }
+}
+
+void CuttableVisualMesh::setSettings(const VisualCutSettings& settings)
+{
+  const std::string label = "visual mesh '" + Mesh.name + "'";
+  checkSettings(label, settings);
+  if (settings.cutSurfaceRows != Settings.cutSurfaceRows &&
+      (!Strips.empty() || !EndColumns.empty()))
+  {
+    throw InvalidInputError(label + ": cut surface rows cannot change from " +
+                            std::to_string(Settings.cutSurfaceRows) + " to " +
+                            std::to_string(settings.cutSurfaceRows) +
+                            " once the tissue is cut (its cut surfaces meet the new ones)");
+  }
+  Settings = settings;
 }
 
 void CuttableVisualMesh::reserveRoom()

@@ -118,6 +118,14 @@ public:
   explicit CuttableVisualMesh(const VisualCollisionBinding& binding,
     const VisualCutSettings& settings = {});
 
+  /// The settings of the cuts to come (a settings panel's change between
+  /// cuts): jaggedness changes the cut surfaces made from now on only.
+  /// Throws InvalidInputError, changing nothing, on bad values or on a new
+  /// row count once a cut surface exists (its end columns at the collision
+  /// vertices are shared with the strips to come).
+  void setSettings(const VisualCutSettings& settings);
+  const VisualCutSettings& settings() const { return Settings; }
+
   /// Follows one cut of the collision mesh: `collision` is the mesh after
   /// the cut, `cut` what CuttableCollisionMesh::cut reported. The collision
   /// mesh must be the one the binding was made for, cut after cut.

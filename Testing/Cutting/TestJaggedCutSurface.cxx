@@ -189,3 +189,60 @@ TEST(JaggedCutSurface, BadSettingsAndToolsAreRefused)
   EXPECT_THROW(cutter.contour(Vector3(3.0, 0.0, 0.0), 3.0, 1.5), InvalidInputError);
   EXPECT_EQ(cutter.visual().mesh().positions, before);
 }
+
+// A settings panel's change between cuts (issue 17's live settings): the
+// next cut's surface is jagged, the earlier one stays as it was; changes
+// the cutter cannot honour are refused and change nothing.
+TEST(JaggedCutSurface, SettingsChangedBetweenCutsApplyToTheCutsToCome)
+{
+  TissueCutter cutter = cutSheet(0.0);
+  ASSERT_LT(cutter.cutRimRoughness().maximum, 1e-9);
+  const std::vector<Vector3> smoothCut = cutter.visual().mesh().positions;
+
+  TissueCutterSettings jagged = cutter.settings();
+  jagged.visual.jaggedAmplitude = 0.4;
+  jagged.visual.jaggedSeed = 5u;
+  cutter.setSettings(jagged);
+  EXPECT_EQ(cutter.visual().settings().jaggedAmplitude, 0.4);
+  const Vector3 up(0.0, 0.0, 10.0);
+  const TissueCutReport second = cutter.cut(Blade::sweptSegment(Vector3(-15.0, -70.0, 0.0) - up,
+    Vector3(-15.0, -70.0, 0.0) + up,
+    Vector3(-15.0, 70.0, 0.0) - up,
+    Vector3(-15.0, 70.0, 0.0) + up));
+  ASSERT_TRUE(second.changed());
+  EXPECT_GT(cutter.cutRimRoughness().maximum, 0.05);
+  EXPECT_TRUE(cutterIsConsistent(cutter, boundSheet().sheet.simulation));
+  // The first cut's surface (its vertices at x = 3) did not move.
+  for (std::size_t v = 0; v < smoothCut.size(); ++v)
+    if (std::abs(smoothCut[v].x() - 3.0) < 1.0)
+    {
+      EXPECT_EQ(cutter.visual().mesh().positions[v], smoothCut[v]) << "vertex " << v;
+    }
+
+  const std::vector<Vector3> before = cutter.visual().mesh().positions;
+  TissueCutterSettings bad = cutter.settings();
+  bad.visual.cutSurfaceRows = 3; // the cut surfaces have 1 row
+  EXPECT_THROW(cutter.setSettings(bad), InvalidInputError);
+  bad = cutter.settings();
+  bad.visual.jaggedWavelength = -1.0;
+  EXPECT_THROW(cutter.setSettings(bad), InvalidInputError);
+  bad = cutter.settings();
+  bad.fragmentAreaFraction = 1.5;
+  EXPECT_THROW(cutter.setSettings(bad), InvalidInputError);
+  bad = cutter.settings();
+  bad.collision.snapFraction = 0.5;
+  EXPECT_THROW(cutter.setSettings(bad), InvalidInputError);
+  bad = cutter.settings();
+  bad.radiusArrayName = "Thickness";
+  EXPECT_THROW(cutter.setSettings(bad), InvalidInputError);
+  EXPECT_EQ(cutter.settings().visual.jaggedAmplitude, 0.4);
+  EXPECT_EQ(cutter.settings().visual.cutSurfaceRows, 1);
+  EXPECT_EQ(cutter.visual().mesh().positions, before);
+
+  // Before any cut, the row count may change.
+  TissueCutter uncut(boundSheet().binding, boundSheet().sheet.simulation);
+  TissueCutterSettings rows = uncut.settings();
+  rows.visual.cutSurfaceRows = 3;
+  uncut.setSettings(rows);
+  EXPECT_EQ(uncut.visual().settings().cutSurfaceRows, 3);
+}
