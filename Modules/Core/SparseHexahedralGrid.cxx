@@ -172,72 +172,63 @@ bool triangleOverlapsBox(const Vector3& a,
   return true;
 }
 
-SparseHexahedralGrid SparseHexahedralGrid::fromSurface(const TriangleMesh& surface,
+namespace
+{
+
+/// The cell size the settings ask for (a size, or cells along the longest
+/// side of `extent`).
+double chosenCellSize(const std::string& context,
+  const Vector3& extent,
   const SparseHexahedralGridSettings& settings)
 {
-  const std::string context = surfaceContext(surface);
-  if (surface.triangles.empty())
-  {
-    throw InvalidInputError(context + ": no triangles to make a hexahedral grid from");
-  }
-  surface.checkConsistency();
-  checkClosed(surface);
-
-  const BoundingBox bounds = surface.boundingBox();
-  const Vector3 extent = bounds.sizes();
-  const double longest = extent.maxCoeff();
-  if (!(longest > 0.0))
-  {
-    throw InvalidInputError(context + ": all vertices at one point");
-  }
-  double h = 0.0;
   if (settings.cellSize > 0.0 && std::isfinite(settings.cellSize))
   {
-    h = settings.cellSize;
+    return settings.cellSize;
   }
-  else if (settings.cellSize != 0.0)
+  if (settings.cellSize != 0.0)
   {
     throw InvalidInputError(context + ": cell size must be positive and finite, got " +
                             std::to_string(settings.cellSize));
   }
-  else if (settings.cellsAlongLongestSide >= 1)
+  if (settings.cellsAlongLongestSide >= 1)
   {
-    h = longest / settings.cellsAlongLongestSide;
+    return extent.maxCoeff() / settings.cellsAlongLongestSide;
   }
-  else
-  {
-    throw InvalidInputError(context + ": cells along the longest side must be at least 1, got " +
-                            std::to_string(settings.cellsAlongLongestSide));
-  }
+  throw InvalidInputError(context + ": cells along the longest side must be at least 1, got " +
+                          std::to_string(settings.cellsAlongLongestSide));
+}
 
-  SparseHexahedralGrid grid;
-  grid.cellSize = h;
-  double totalCells = 1.0;
-  for (int a = 0; a < 3; ++a)
+/// Cell and node numbering of a grid of nx x ny x nz cells.
+struct GridIndexing
+{
+  int nx = 0, ny = 0, nz = 0;
+  std::size_t cellCount() const { return static_cast<std::size_t>(nx) * ny * nz; }
+  std::size_t cell(int i, int j, int k) const
   {
-    // Tolerance: an extent of exactly n cells gives n cells, not n + 1.
-    const double cells = std::ceil(extent[a] / h - 1e-9);
-    totalCells *= std::max(1.0, cells);
-    if (totalCells > MaximumGridCells)
-    {
-      throw InvalidInputError(context + ": resolution too fine (cell size " + std::to_string(h) +
-                              " for a bounding box of " + std::to_string(longest) +
-                              "): more than " + std::to_string(MaximumGridCells) + " grid cells");
-    }
-    grid.cellCounts[a] = std::max(1, static_cast<int>(cells));
+    return (static_cast<std::size_t>(k) * ny + j) * nx + i;
   }
-  const int nx = grid.cellCounts[0];
-  const int ny = grid.cellCounts[1];
-  const int nz = grid.cellCounts[2];
-  grid.origin = bounds.center() - 0.5 * h * Vector3(nx, ny, nz);
-  const Vector3 origin = grid.origin;
-  const std::size_t cellCount = static_cast<std::size_t>(nx) * ny * nz;
-  const auto cellId = [=](int i, int j, int k)
-  { return (static_cast<std::size_t>(k) * ny + j) * nx + i; };
+  std::array<int, 3> cellCoordinates(std::size_t id) const
+  {
+    return { { static_cast<int>(id % nx),
+      static_cast<int>((id / nx) % ny),
+      static_cast<int>(id / (static_cast<std::size_t>(nx) * ny)) } };
+  }
+  std::size_t nodeCount() const { return static_cast<std::size_t>(nx + 1) * (ny + 1) * (nz + 1); }
+  std::size_t node(int i, int j, int k) const
+  {
+    return (static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i;
+  }
+};
 
-  // 1. Cells the surface passes through: each triangle against the cells of
-  //    its bounding box.
-  std::vector<std::uint8_t> intersected(cellCount, 0);
+/// Per cell, 1 where the surface passes through it: each triangle against
+/// the cells of its bounding box.
+std::vector<std::uint8_t> cellsCrossedBySurface(const TriangleMesh& surface,
+  const SparseHexahedralGrid& grid,
+  const GridIndexing& index)
+{
+  std::vector<std::uint8_t> intersected(index.cellCount(), 0);
+  const double h = grid.cellSize;
+  const Vector3& origin = grid.origin;
   const double slack = 1e-9 * h;
   for (const Triangle& t : surface.triangles)
   {
@@ -258,53 +249,49 @@ SparseHexahedralGrid SparseHexahedralGrid::fromSurface(const TriangleMesh& surfa
     }
     const bool single = first == last;
     for (int k = first[2]; k <= last[2]; ++k)
-    {
       for (int j = first[1]; j <= last[1]; ++j)
-      {
         for (int i = first[0]; i <= last[0]; ++i)
         {
-          std::uint8_t& cell = intersected[cellId(i, j, k)];
+          std::uint8_t& cell = intersected[index.cell(i, j, k)];
           if (cell != 0)
-          {
             continue;
-          }
           BoundingBox box;
           box.min() = origin + h * Vector3(i, j, k) - Vector3::Constant(slack);
           box.max() = origin + h * Vector3(i + 1, j + 1, k + 1) + Vector3::Constant(slack);
           if (single || triangleOverlapsBox(a, b, c, box))
-          {
             cell = 1;
-          }
         }
-      }
-    }
   }
+  return intersected;
+}
 
-  // 2. The other cells lie wholly inside or outside. Label their connected
-  //    pieces (6-neighbours); a piece on the grid's border is outside (the
-  //    surface cannot separate it from the exterior without passing through
-  //    the border cell), any other is classified by the winding number at
-  //    one of its cells.
-  std::vector<int> piece(cellCount, -1);
-  std::vector<std::uint8_t> pieceInside;
-  std::vector<std::size_t> stack;
-  for (std::size_t seed = 0; seed < cellCount; ++seed)
+/// Per cell, 1 if kept: crossed by the surface, or inside it. The other
+/// cells lie wholly inside or outside; their connected pieces (6-neighbours)
+/// are labelled; a piece on the grid's border is outside (the surface cannot
+/// separate it from the exterior without passing through the border cell),
+/// any other is classified by the winding number at one of its cells.
+std::vector<std::uint8_t> keptCells(const TriangleMesh& surface,
+  const SparseHexahedralGrid& grid,
+  const GridIndexing& index,
+  std::vector<std::uint8_t> kept)
+{
+  const int nx = index.nx, ny = index.ny, nz = index.nz;
+  std::vector<char> visited(index.cellCount(), 0);
+  std::vector<std::size_t> stack, members;
+  for (std::size_t seed = 0; seed < index.cellCount(); ++seed)
   {
-    if (intersected[seed] != 0 || piece[seed] >= 0)
-    {
+    if (kept[seed] != 0 || visited[seed] != 0)
       continue;
-    }
-    const int label = static_cast<int>(pieceInside.size());
     bool onBorder = false;
-    piece[seed] = label;
+    visited[seed] = 1;
     stack.assign(1, seed);
+    members.clear();
     while (!stack.empty())
     {
       const std::size_t id = stack.back();
       stack.pop_back();
-      const int i = static_cast<int>(id % nx);
-      const int j = static_cast<int>((id / nx) % ny);
-      const int k = static_cast<int>(id / (static_cast<std::size_t>(nx) * ny));
+      members.push_back(id);
+      const auto [i, j, k] = index.cellCoordinates(id);
       onBorder =
         onBorder || i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1;
       const int neighbours[6][3] = { { i - 1, j, k },
@@ -316,96 +303,118 @@ SparseHexahedralGrid SparseHexahedralGrid::fromSurface(const TriangleMesh& surfa
       for (const auto& n : neighbours)
       {
         if (n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= nx || n[1] >= ny || n[2] >= nz)
-        {
           continue;
-        }
-        const std::size_t nid = cellId(n[0], n[1], n[2]);
-        if (intersected[nid] == 0 && piece[nid] < 0)
+        const std::size_t nid = index.cell(n[0], n[1], n[2]);
+        if (kept[nid] == 0 && visited[nid] == 0)
         {
-          piece[nid] = label;
+          visited[nid] = 1;
           stack.push_back(nid);
         }
       }
     }
-    bool inside = false;
-    if (!onBorder)
-    {
-      const int i = static_cast<int>(seed % nx);
-      const int j = static_cast<int>((seed / nx) % ny);
-      const int k = static_cast<int>(seed / (static_cast<std::size_t>(nx) * ny));
-      const Vector3 centre = origin + h * Vector3(i + 0.5, j + 0.5, k + 0.5);
-      // |w| so that an inward-facing surface works too.
-      inside = std::abs(windingNumber(surface, centre)) > 0.5;
-    }
-    pieceInside.push_back(inside ? 1 : 0);
+    if (onBorder)
+      continue;
+    const auto [i, j, k] = index.cellCoordinates(seed);
+    const Vector3 centre = grid.origin + grid.cellSize * Vector3(i + 0.5, j + 0.5, k + 0.5);
+    // |w| so that an inward-facing surface works too.
+    if (std::abs(windingNumber(surface, centre)) > 0.5)
+      for (std::size_t id : members)
+        kept[id] = 2;
   }
+  return kept;
+}
 
-  // 3. Kept cells, then their nodes numbered in grid order.
-  const auto kept = [&](std::size_t id)
-  { return intersected[id] != 0 || pieceInside[static_cast<std::size_t>(piece[id])] != 0; };
-  const std::size_t nodeGridCount = static_cast<std::size_t>(nx + 1) * (ny + 1) * (nz + 1);
-  const auto nodeId = [=](int i, int j, int k)
-  { return (static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i; };
-  std::vector<int> nodeIndex(nodeGridCount, -1);
+/// The kept cells as hexahedra, their nodes numbered in grid order.
+void addKeptHexahedra(SparseHexahedralGrid& grid,
+  const GridIndexing& index,
+  const std::vector<std::uint8_t>& kept)
+{
+  const int nx = index.nx, ny = index.ny, nz = index.nz;
+  std::vector<int> nodeIndex(index.nodeCount(), -1);
   for (int k = 0; k < nz; ++k)
-  {
     for (int j = 0; j < ny; ++j)
-    {
       for (int i = 0; i < nx; ++i)
-      {
-        if (!kept(cellId(i, j, k)))
-        {
-          continue;
-        }
-        for (int c = 0; c < 8; ++c)
-        {
-          const auto o = HexahedralMesh::cornerOffset(c);
-          nodeIndex[nodeId(i + o[0], j + o[1], k + o[2])] = 0;
-        }
-      }
-    }
-  }
+        if (kept[index.cell(i, j, k)] != 0)
+          for (int c = 0; c < 8; ++c)
+          {
+            const auto o = HexahedralMesh::cornerOffset(c);
+            nodeIndex[index.node(i + o[0], j + o[1], k + o[2])] = 0;
+          }
   HexahedralMesh& mesh = grid.mesh;
-  mesh.name = "sparse grid of '" + surface.name + "'";
   for (int k = 0; k <= nz; ++k)
-  {
     for (int j = 0; j <= ny; ++j)
-    {
       for (int i = 0; i <= nx; ++i)
       {
-        int& index = nodeIndex[nodeId(i, j, k)];
-        if (index == 0)
+        int& node = nodeIndex[index.node(i, j, k)];
+        if (node == 0)
         {
-          index = static_cast<int>(mesh.nodes.size());
-          mesh.nodes.push_back(origin + h * Vector3(i, j, k));
+          node = static_cast<int>(mesh.nodes.size());
+          mesh.nodes.push_back(grid.origin + grid.cellSize * Vector3(i, j, k));
         }
       }
-    }
-  }
   for (int k = 0; k < nz; ++k)
-  {
     for (int j = 0; j < ny; ++j)
-    {
       for (int i = 0; i < nx; ++i)
       {
-        const std::size_t id = cellId(i, j, k);
-        if (!kept(id))
-        {
+        const std::size_t id = index.cell(i, j, k);
+        if (kept[id] == 0)
           continue;
-        }
         Hexahedron hex;
         for (int c = 0; c < 8; ++c)
         {
           const auto o = HexahedralMesh::cornerOffset(c);
-          hex[c] = nodeIndex[nodeId(i + o[0], j + o[1], k + o[2])];
+          hex[c] = nodeIndex[index.node(i + o[0], j + o[1], k + o[2])];
         }
         mesh.hexahedra.push_back(hex);
         grid.cellIndices.push_back({ { i, j, k } });
-        grid.intersectsSurface.push_back(intersected[id]);
+        grid.intersectsSurface.push_back(kept[id] == 1 ? 1 : 0);
       }
-    }
-  }
   mesh.fixedNodes.assign(mesh.nodes.size(), 0);
+}
+
+} // namespace
+
+SparseHexahedralGrid SparseHexahedralGrid::fromSurface(const TriangleMesh& surface,
+  const SparseHexahedralGridSettings& settings)
+{
+  const std::string context = surfaceContext(surface);
+  if (surface.triangles.empty())
+  {
+    throw InvalidInputError(context + ": no triangles to make a hexahedral grid from");
+  }
+  surface.checkConsistency();
+  checkClosed(surface);
+
+  const BoundingBox bounds = surface.boundingBox();
+  const Vector3 extent = bounds.sizes();
+  const double longest = extent.maxCoeff();
+  if (!(longest > 0.0))
+  {
+    throw InvalidInputError(context + ": all vertices at one point");
+  }
+  const double h = chosenCellSize(context, extent, settings);
+  SparseHexahedralGrid grid;
+  grid.cellSize = h;
+  double totalCells = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    // Tolerance: an extent of exactly n cells gives n cells, not n + 1.
+    const double cells = std::ceil(extent[a] / h - 1e-9);
+    totalCells *= std::max(1.0, cells);
+    if (totalCells > MaximumGridCells)
+    {
+      throw InvalidInputError(context + ": resolution too fine (cell size " + std::to_string(h) +
+                              " for a bounding box of " + std::to_string(longest) +
+                              "): more than " + std::to_string(MaximumGridCells) + " grid cells");
+    }
+    grid.cellCounts[a] = std::max(1, static_cast<int>(cells));
+  }
+  const GridIndexing index{ grid.cellCounts[0], grid.cellCounts[1], grid.cellCounts[2] };
+  grid.origin = bounds.center() - 0.5 * h * Vector3(index.nx, index.ny, index.nz);
+  grid.mesh.name = "sparse grid of '" + surface.name + "'";
+  // Crossed cells (1), then the cells inside (2), as hexahedra.
+  addKeptHexahedra(
+    grid, index, keptCells(surface, grid, index, cellsCrossedBySurface(surface, grid, index)));
   return grid;
 }
 
