@@ -599,166 +599,193 @@ TriangleMesh ParametricSolid::boundarySurface(const ParametricResolution& resolu
   return mesh;
 }
 
-TriangleMesh ParametricSolid::midSurface(int along, int across) const
+namespace
 {
-  const std::vector<double> lineS = gridLines(0, along);
-  const std::vector<double> lineU = gridLines(1, across);
-  // Leaves of each (s, u) cell: its w extent split by horizontal cracks.
+
+/// The mid-surface of a parametric solid (ParametricSolid::midSurface):
+/// per (s, u) cell its leaves (the cell's w extent split by horizontal
+/// cracks), one quad per leaf; per grid node one vertex per group of leaves
+/// joined around it (leaves of neighbouring cells that overlap in w and are
+/// not parted by a crack face).
+class MidSurfaceBuilder
+{
+public:
+  MidSurfaceBuilder(const ParametricSolid& solid, int along, int across)
+    : Solid(solid)
+    , Along(along)
+    , Across(across)
+    , LineS(solid.gridLines(0, along))
+    , LineU(solid.gridLines(1, across))
+  {
+    Mesh.name = solid.name() + " collision";
+  }
+
+  TriangleMesh build()
+  {
+    splitCellsIntoLeaves();
+    for (int j = 0; j <= Across; ++j)
+      for (int i = 0; i <= Along; ++i)
+        addNodeVertices(i, j);
+    for (const Leaf& leaf : Leaves)
+      appendQuad(Mesh.triangles, Mesh.positions, leaf.corners, IsFrontVertex);
+    Mesh.pointAttributes.set("Radius", 1, std::move(Radii));
+    Mesh.computeVertexNormals();
+    return std::move(Mesh);
+  }
+
+private:
   struct Leaf
   {
     int i, j;
     double low, high;
     std::array<int, 4> corners{ { -1, -1, -1, -1 } }; // (0,0) (1,0) (1,1) (0,1)
   };
-  std::vector<Leaf> leaves;
-  std::vector<std::vector<int>> leavesOfCell(static_cast<std::size_t>(along) * across);
-  for (int j = 0; j < across; ++j)
+  /// A leaf around a node, the corner the node is for it and the quadrant
+  /// bits (bit 0: cell on the + side in s, bit 1: in u).
+  struct Incident
   {
-    for (int i = 0; i < along; ++i)
-    {
-      const double s = 0.5 * (lineS[i] + lineS[i + 1]);
-      const double u = 0.5 * (lineU[j] + lineU[j + 1]);
-      std::vector<double> cuts{ 0.0, 1.0 };
-      for (const auto& crack : Cracks)
+    int leaf, corner, quadrant;
+  };
+
+  void splitCellsIntoLeaves()
+  {
+    LeavesOfCell.resize(static_cast<std::size_t>(Along) * Across);
+    for (int j = 0; j < Across; ++j)
+      for (int i = 0; i < Along; ++i)
       {
-        if (crack.normalAxis == 2 && isInsideOpen(s, crack.ranges[0]) &&
-            isInsideOpen(u, crack.ranges[1]))
+        const double s = 0.5 * (LineS[i] + LineS[i + 1]);
+        const double u = 0.5 * (LineU[j] + LineU[j + 1]);
+        std::vector<double> cuts{ 0.0, 1.0 };
+        for (const auto& crack : Solid.cracks())
+          if (crack.normalAxis == 2 && isInsideOpen(s, crack.ranges[0]) &&
+              isInsideOpen(u, crack.ranges[1]))
+            cuts.push_back(crack.position);
+        std::sort(cuts.begin(), cuts.end());
+        cuts.erase(std::unique(cuts.begin(), cuts.end(), isSameParameter), cuts.end());
+        for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
         {
-          cuts.push_back(crack.position);
+          LeavesOfCell[i + Along * j].push_back(static_cast<int>(Leaves.size()));
+          Leaves.push_back(Leaf{ i, j, cuts[c], cuts[c + 1] });
         }
       }
-      std::sort(cuts.begin(), cuts.end());
-      cuts.erase(std::unique(cuts.begin(), cuts.end(), isSameParameter), cuts.end());
-      for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
-      {
-        leavesOfCell[i + along * j].push_back(static_cast<int>(leaves.size()));
-        leaves.push_back(Leaf{ i, j, cuts[c], cuts[c + 1] });
-      }
+  }
+
+  std::vector<Incident> incidentLeaves(int i, int j) const
+  {
+    std::vector<Incident> incident;
+    for (int quadrant = 0; quadrant < 4; ++quadrant)
+    {
+      const int ci = i - 1 + (quadrant & 1);
+      const int cj = j - 1 + ((quadrant >> 1) & 1);
+      if (ci < 0 || cj < 0 || ci >= Along || cj >= Across)
+        continue;
+      // Corner of the cell at this node, counter-clockwise from (0,0).
+      static const int cornerOfQuadrant[4] = { 2, 3, 1, 0 };
+      for (int leaf : LeavesOfCell[ci + Along * cj])
+        incident.push_back({ leaf, cornerOfQuadrant[quadrant], quadrant });
+    }
+    return incident;
+  }
+
+  /// Whether two leaves of cells beside each other around node (i, j)
+  /// overlap in w and are not parted by a crack face.
+  bool joined(int i, int j, const Incident& x, const Incident& y) const
+  {
+    const int differing = x.quadrant ^ y.quadrant;
+    if (differing != 1 && differing != 2)
+      return false; // same cell (distinct leaves) or diagonal neighbours
+    const Leaf& a = Leaves[x.leaf];
+    const Leaf& b = Leaves[y.leaf];
+    const double low = std::max(a.low, b.low);
+    const double high = std::min(a.high, b.high);
+    if (high - low <= ParameterTolerance)
+      return false;
+    const int axis = differing == 1 ? 0 : 1;
+    ParameterPoint centre;
+    centre[axis] = axis == 0 ? LineS[i] : LineU[j];
+    centre[1 - axis] =
+      axis == 1 ? 0.5 * (LineS[a.i] + LineS[a.i + 1]) : 0.5 * (LineU[a.j] + LineU[a.j + 1]);
+    centre[2] = 0.5 * (low + high);
+    return !isCrackFace(Solid.cracks(), axis, centre[axis], centre);
+  }
+
+  void addNodeVertices(int i, int j)
+  {
+    const std::vector<Incident> incident = incidentLeaves(i, j);
+    UnionFind groups(incident.size());
+    for (std::size_t x = 0; x < incident.size(); ++x)
+      for (std::size_t y = x + 1; y < incident.size(); ++y)
+        if (joined(i, j, incident[x], incident[y]))
+          groups.unite(static_cast<int>(x), static_cast<int>(y));
+    std::vector<int> vertexOfRoot(incident.size(), -1);
+    for (std::size_t x = 0; x < incident.size(); ++x)
+    {
+      const int root = groups.find(static_cast<int>(x));
+      if (vertexOfRoot[root] < 0)
+        vertexOfRoot[root] = addGroupVertex(i, j, incident, groups, root);
+      Leaves[incident[x].leaf].corners[incident[x].corner] = vertexOfRoot[root];
     }
   }
 
-  TriangleMesh mesh;
-  mesh.name = Name + " collision";
-  std::vector<double> radii;
-  std::vector<bool> isFrontVertex;
-  for (int j = 0; j <= across; ++j)
+  /// The vertex of one group of leaves around node (i, j): at the middle of
+  /// the group's w extent, on the crack sides the group lies on, with half
+  /// the extent's thickness as its radius.
+  int addGroupVertex(int i,
+    int j,
+    const std::vector<Incident>& incident,
+    UnionFind& groups,
+    int root)
   {
-    for (int i = 0; i <= along; ++i)
+    double low = 1.0;
+    double high = 0.0;
+    std::vector<int> octants;
+    for (std::size_t y = 0; y < incident.size(); ++y)
     {
-      // Leaves around the node with the corner the node is for them and the
-      // quadrant bits (bit 0: cell on the + side in s, bit 1: in u).
-      struct Incident
-      {
-        int leaf, corner, quadrant;
-      };
-      std::vector<Incident> incident;
-      for (int quadrant = 0; quadrant < 4; ++quadrant)
-      {
-        const int ci = i - 1 + (quadrant & 1);
-        const int cj = j - 1 + ((quadrant >> 1) & 1);
-        if (ci < 0 || cj < 0 || ci >= along || cj >= across)
-        {
-          continue;
-        }
-        // Corner of the cell at this node, counter-clockwise from (0,0).
-        static const int cornerOfQuadrant[4] = { 2, 3, 1, 0 };
-        for (int leaf : leavesOfCell[ci + along * cj])
-        {
-          incident.push_back({ leaf, cornerOfQuadrant[quadrant], quadrant });
-        }
-      }
-      UnionFind groups(incident.size());
-      const ParameterPoint nodeParameter(lineS[i], lineU[j], 0.5);
-      for (std::size_t x = 0; x < incident.size(); ++x)
-      {
-        for (std::size_t y = x + 1; y < incident.size(); ++y)
-        {
-          const int differing = incident[x].quadrant ^ incident[y].quadrant;
-          if (differing != 1 && differing != 2)
-          {
-            continue; // same cell (distinct leaves) or diagonal neighbours
-          }
-          const Leaf& a = leaves[incident[x].leaf];
-          const Leaf& b = leaves[incident[y].leaf];
-          const double low = std::max(a.low, b.low);
-          const double high = std::min(a.high, b.high);
-          if (high - low <= ParameterTolerance)
-          {
-            continue;
-          }
-          const int axis = differing == 1 ? 0 : 1;
-          ParameterPoint centre;
-          centre[axis] = nodeParameter[axis];
-          const int other = 1 - axis;
-          const Leaf& any = a;
-          centre[other] = other == 0 ? 0.5 * (lineS[any.i] + lineS[any.i + 1])
-                                     : 0.5 * (lineU[any.j] + lineU[any.j + 1]);
-          centre[2] = 0.5 * (low + high);
-          if (!isCrackFace(Cracks, axis, centre[axis], centre))
-          {
-            groups.unite(static_cast<int>(x), static_cast<int>(y));
-          }
-        }
-      }
-      std::vector<int> vertexOfRoot(incident.size(), -1);
-      for (std::size_t x = 0; x < incident.size(); ++x)
-      {
-        const int root = groups.find(static_cast<int>(x));
-        if (vertexOfRoot[root] < 0)
-        {
-          // The component's w extent, and the crack sides it lies on.
-          double low = 1.0;
-          double high = 0.0;
-          std::vector<int> octants;
-          for (std::size_t y = 0; y < incident.size(); ++y)
-          {
-            if (groups.find(static_cast<int>(y)) == root)
-            {
-              const Leaf& leaf = leaves[incident[y].leaf];
-              low = std::min(low, leaf.low);
-              high = std::max(high, leaf.high);
-              // Octant bits as in 3-D: w bit set for leaves above w = 1/2.
-              const bool above = leaf.low >= 0.5 - ParameterTolerance;
-              const bool below = leaf.high <= 0.5 + ParameterTolerance;
-              for (int wBit = 0; wBit < 2; ++wBit)
-              {
-                if ((wBit == 1 && !below) || (wBit == 0 && !above))
-                {
-                  octants.push_back(incident[y].quadrant | (wBit << 2));
-                }
-              }
-            }
-          }
-          const ParameterPoint mid(lineS[i], lineU[j], 0.5 * (low + high));
-          std::vector<int> sides = copySides(Cracks, nodeParameter, octants);
-          // Horizontal cracks: the leaf's side is whether it is above.
-          for (std::size_t c = 0; c < Cracks.size(); ++c)
-          {
-            if (Cracks[c].normalAxis == 2)
-            {
-              sides[c] = low >= Cracks[c].position - ParameterTolerance    ? 1
-                         : high <= Cracks[c].position + ParameterTolerance ? -1
-                                                                           : 0;
-            }
-          }
-          vertexOfRoot[root] = static_cast<int>(mesh.positions.size());
-          mesh.positions.push_back(openedPoint(mid, sides));
-          isFrontVertex.push_back(isTearFront(Cracks, sides, nodeParameter, true));
-          radii.push_back(0.5 * (Map(ParameterPoint(lineS[i], lineU[j], high)) -
-                                  Map(ParameterPoint(lineS[i], lineU[j], low)))
-                                  .norm());
-        }
-        leaves[incident[x].leaf].corners[incident[x].corner] = vertexOfRoot[root];
-      }
+      if (groups.find(static_cast<int>(y)) != root)
+        continue;
+      const Leaf& leaf = Leaves[incident[y].leaf];
+      low = std::min(low, leaf.low);
+      high = std::max(high, leaf.high);
+      // Octant bits as in 3-D: w bit set for leaves above w = 1/2.
+      const bool above = leaf.low >= 0.5 - ParameterTolerance;
+      const bool below = leaf.high <= 0.5 + ParameterTolerance;
+      for (int wBit = 0; wBit < 2; ++wBit)
+        if ((wBit == 1 && !below) || (wBit == 0 && !above))
+          octants.push_back(incident[y].quadrant | (wBit << 2));
     }
+    const auto& cracks = Solid.cracks();
+    const ParameterPoint nodeParameter(LineS[i], LineU[j], 0.5);
+    std::vector<int> sides = copySides(cracks, nodeParameter, octants);
+    // Horizontal cracks: the leaf's side is whether it is above.
+    for (std::size_t c = 0; c < cracks.size(); ++c)
+      if (cracks[c].normalAxis == 2)
+        sides[c] = low >= cracks[c].position - ParameterTolerance    ? 1
+                   : high <= cracks[c].position + ParameterTolerance ? -1
+                                                                     : 0;
+    const ParameterPoint mid(LineS[i], LineU[j], 0.5 * (low + high));
+    Mesh.positions.push_back(Solid.openedPoint(mid, sides));
+    IsFrontVertex.push_back(isTearFront(cracks, sides, nodeParameter, true));
+    Radii.push_back(0.5 * (Solid.point(ParameterPoint(LineS[i], LineU[j], high)) -
+                            Solid.point(ParameterPoint(LineS[i], LineU[j], low)))
+                            .norm());
+    return static_cast<int>(Mesh.positions.size()) - 1;
   }
-  for (const Leaf& leaf : leaves)
-  {
-    appendQuad(mesh.triangles, mesh.positions, leaf.corners, isFrontVertex);
-  }
-  mesh.pointAttributes.set("Radius", 1, std::move(radii));
-  mesh.computeVertexNormals();
-  return mesh;
+
+  const ParametricSolid& Solid;
+  const int Along, Across;
+  const std::vector<double> LineS, LineU;
+  std::vector<Leaf> Leaves;
+  std::vector<std::vector<int>> LeavesOfCell;
+  TriangleMesh Mesh;
+  std::vector<double> Radii;
+  std::vector<bool> IsFrontVertex;
+};
+
+} // namespace
+
+TriangleMesh ParametricSolid::midSurface(int along, int across) const
+{
+  return MidSurfaceBuilder(*this, along, across).build();
 }
 
 HexahedralMesh ParametricSolid::hexahedra(const ParametricResolution& resolution,
