@@ -99,6 +99,25 @@ void TrainingScene::buildWrinkles(const HexahedralMesh& hexahedra, const Triangl
   }
 }
 
+namespace
+{
+
+/// The cutter's settings from the scenario's cutting keys; removed pieces
+/// are handed over so that the scene can measure them.
+TissueCutterSettings cutterSettings(const ScenarioDescription& scenario)
+{
+  TissueCutterSettings settings;
+  settings.freePieces = FreePieceHandling::HandOver;
+  settings.visual.cutSurfaceRows = scenario.cutSurfaceRows;
+  settings.fragmentAreaFraction = scenario.fragmentAreaFraction;
+  settings.visual.jaggedAmplitude = scenario.jaggedAmplitude;
+  settings.visual.jaggedWavelength = scenario.jaggedWavelength;
+  settings.visual.jaggedSeed = scenario.jaggedSeed;
+  return settings;
+}
+
+} // namespace
+
 void TrainingScene::buildCutting()
 {
   // A cutting instrument: the visual mesh bound to the collision mesh (5.2)
@@ -109,15 +128,8 @@ void TrainingScene::buildCutting()
     Tissue.binding = std::make_unique<VisualCollisionBinding>(
       bindVisualToCollision(Tissue.model.visual, Tissue.model.collision));
   }
-  TissueCutterSettings settings;
-  settings.freePieces = FreePieceHandling::HandOver;
-  settings.visual.cutSurfaceRows = Scenario.cutSurfaceRows;
-  settings.fragmentAreaFraction = Scenario.fragmentAreaFraction;
-  settings.visual.jaggedAmplitude = Scenario.jaggedAmplitude;
-  settings.visual.jaggedWavelength = Scenario.jaggedWavelength;
-  settings.visual.jaggedSeed = Scenario.jaggedSeed;
-  Cutter =
-    std::make_unique<TissueCutter>(*Tissue.binding, Tissue.model.simulation, Fem.get(), settings);
+  Cutter = std::make_unique<TissueCutter>(
+    *Tissue.binding, Tissue.model.simulation, Fem.get(), cutterSettings(Scenario));
   InstrumentActionSettings action;
   action.shaverMode = Scenario.shaverMode;
   action.contourStrength = Scenario.contourStrength;
@@ -360,7 +372,16 @@ bool TrainingScene::applySettings(const ScenarioDescription& changed)
                                  changed.jaggedSeed != Scenario.jaggedSeed;
   if (Cutter && cutSurfaceChanged)
   {
-    return false;
+    // For the cuts to come; a new row count once the tissue has a cut
+    // surface is refused (the scene must be built again).
+    try
+    {
+      Cutter->setSettings(cutterSettings(changed));
+    }
+    catch (const InvalidInputError&)
+    {
+      return false;
+    }
   }
   const LinearMaterial& m = changed.material;
   if (m.youngModulus != Scenario.material.youngModulus ||

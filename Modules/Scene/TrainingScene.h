@@ -71,10 +71,10 @@ public:
   /// Applies changed settings (the window's panel: applyScenarioSettings)
   /// to the running scene between two steps, without building it again:
   /// the material (every hexahedron's, the masses following) and the
-  /// wrinkle parameters. The cut-surface settings (rows, fragments, jagged
-  /// cut surface) are taken by the cutter when it is built: with a cutting
-  /// instrument a change of them returns false, changing nothing (build
-  /// the scene again); without one they are kept for the next build. Only
+  /// wrinkle parameters, and the cut-surface settings (fragments, jagged
+  /// cut surface, rows until the first cut) for the cuts to come. A new row
+  /// count once the tissue has a cut surface returns false, changing
+  /// nothing (build the scene again). Only
   /// the settings' keys may differ from scenario(). Not while another
   /// thread steps the scene.
   bool applySettings(const ScenarioDescription& changed);

@@ -515,12 +515,19 @@ TEST(TrainingScene, MaterialAndWrinkleSettingsApplyToTheRunningScene)
   ASSERT_TRUE(unchanged.scene.runTo(2.6));
   EXPECT_GT(deepest(unchanged.scene), 1.1 * deepest(live.scene));
 
-  // A cutting scene keeps its cut-surface settings until built again.
+  // A cutting scene: the jagged cut surface applies to the cuts to come;
+  // a new row count once it has cut is refused, nothing changed.
   const SceneRecording sheet = readSceneRecording(Data + "/Recordings/sheet-cutting.json");
   const ScenarioDescription knife = readScenario(sheet.scenario);
   ScriptedHapticDevice sheetScope(sheet.scope), sheetKnife(sheet.instrument);
   TrainingScene cutting(knife, sheetScope, sheetKnife);
-  ScenarioDescription rows = knife;
+  ScenarioDescription jagged = knife;
+  jagged.jaggedAmplitude = 0.3;
+  ASSERT_TRUE(cutting.applySettings(jagged));
+  ASSERT_TRUE(cutting.runTo(knife.duration));
+  ASSERT_GT(cutting.cutter()->visual().cutSurfaceTriangleCount(), 0u);
+  EXPECT_GT(cutting.cutter()->cutRimRoughness().maximum, 0.0);
+  ScenarioDescription rows = jagged;
   rows.cutSurfaceRows = knife.cutSurfaceRows + 1;
   rows.material.youngModulus = 2.0 * knife.material.youngModulus;
   EXPECT_FALSE(cutting.applySettings(rows));
