@@ -49,10 +49,10 @@ void checkCutterSettings(const std::string& name, const TissueCutterSettings& se
                             std::to_string(settings.collision.snapFraction) +
                             " is not in [0, 0.5)");
   }
-  if (!(settings.fragmentAreaFraction >= 0.0 && settings.fragmentAreaFraction < 1.0))
+  if (!(settings.fragmentAreaFraction >= 0.0 && settings.fragmentAreaFraction <= 1.0))
   {
     throw InvalidInputError(label + ": fragment area fraction " +
-                            std::to_string(settings.fragmentAreaFraction) + " is not in [0, 1)");
+                            std::to_string(settings.fragmentAreaFraction) + " is not in [0, 1]");
   }
 }
 
