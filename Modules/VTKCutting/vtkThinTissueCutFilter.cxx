@@ -207,6 +207,26 @@ vtkSmartPointer<vtkPolyData> visualOutputOf(const thintissue::TissueCutter& cutt
 
 } // namespace
 
+namespace
+{
+
+thintissue::TissueCutterSettings cutterSettings(vtkThinTissueCutFilter& filter)
+{
+  thintissue::TissueCutterSettings settings;
+  settings.collision.snapFraction = filter.GetSnapFraction();
+  settings.visual.cutSurfaceRows = filter.GetCutSurfaceRows();
+  settings.freePieces = filter.GetFreePieces() == vtkThinTissueCutFilter::DROP_FREE_PIECES
+                          ? thintissue::FreePieceHandling::Drop
+                          : thintissue::FreePieceHandling::Keep;
+  settings.fragmentAreaFraction = filter.GetFragmentAreaFraction();
+  settings.visual.jaggedAmplitude = filter.GetJaggedAmplitude();
+  settings.visual.jaggedWavelength = filter.GetJaggedWavelength();
+  settings.visual.jaggedSeed = filter.GetJaggedSeed();
+  return settings;
+}
+
+} // namespace
+
 int vtkThinTissueCutFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -227,19 +247,16 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
   this->UpdateProgress(0.0);
   try
   {
-    if (!tissue.Cutter || tissueTime > tissue.BuiltFrom)
+    const thintissue::TissueCutterSettings settings = cutterSettings(*this);
+    if (tissue.Cutter && tissueTime <= tissue.BuiltFrom)
+    {
+      // The settings of the cuts to come (a new row count after a cut is
+      // refused: the tissue stays as it is, ResetTissue() builds it again).
+      tissue.Cutter->setSettings(settings);
+    }
+    else
     {
       this->SetProgressText("building the tissue");
-      thintissue::TissueCutterSettings settings;
-      settings.collision.snapFraction = this->SnapFraction;
-      settings.visual.cutSurfaceRows = this->CutSurfaceRows;
-      settings.freePieces = this->FreePieces == DROP_FREE_PIECES
-                              ? thintissue::FreePieceHandling::Drop
-                              : thintissue::FreePieceHandling::Keep;
-      settings.fragmentAreaFraction = this->FragmentAreaFraction;
-      settings.visual.jaggedAmplitude = this->JaggedAmplitude;
-      settings.visual.jaggedWavelength = this->JaggedWavelength;
-      settings.visual.jaggedSeed = this->JaggedSeed;
       const thintissue::VisualCollisionBinding binding =
         thintissue::bindingFromPolyData(visualInput, collisionInput, settings.radiusArrayName);
       tissue.Cutter = std::make_unique<thintissue::TissueCutter>(

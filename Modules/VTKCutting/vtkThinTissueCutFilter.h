@@ -19,10 +19,12 @@
  * 0-2 at the first update and again whenever one of them is modified (or
  * after ResetTissue()); each update whose blade input was modified since
  * the last cut applies that blade once (a blade present when the tissue
- * is built cuts it). CutSurfaceRows and SnapFraction
- * take effect when the tissue is built, as do FreePieces,
- * FragmentAreaFraction and the jagged cut surface (JaggedAmplitude,
- * JaggedWavelength, JaggedSeed; thesis 6.4.4).
+ * is built cuts it). SnapFraction, FreePieces, FragmentAreaFraction and
+ * the jagged cut surface (JaggedAmplitude, JaggedWavelength, JaggedSeed;
+ * thesis 6.4.4) apply to the cuts of the updates after they are set;
+ * CutSurfaceRows too until the first cut makes a cut surface, after which
+ * a change is an error that leaves the tissue as it is (ResetTissue()
+ * builds it again).
  *
  * Contouring (6.4.4): AddContourPass() asks for a pass of a tool held on
  * the cut rim (a sphere and a strength, as TissueCutter::contour); the

@@ -19,11 +19,11 @@ def collision_area(polydata):
     return mass.GetSurfaceArea()
 
 
-def punch_pose(monitors, instrument_bite_centre):
+def punch_pose(monitors, instrument_bite_centre, where=0.5):
     """Tool frame to world: the punch's working side up (+z), its shaft
-    toward the meniscus's open centre, its bite centred on the middle of
-    the inner border, the fixed jaw 0.6 mm below it."""
-    middle = monitors.GetNumberOfPoints() // 2
+    toward the meniscus's open centre, its bite centred on the inner
+    border at fraction `where` along it, the fixed jaw 0.6 mm below it."""
+    middle = int(where * (monitors.GetNumberOfPoints() - 1))
     rim = monitors.GetPoint(middle)
     region = monitors.GetPointData().GetArray("RegionPoint").GetTuple3(middle)
     inward = [region[0] - rim[0], region[1] - rim[1], 0.0]
@@ -78,17 +78,33 @@ class OperationsTest(unittest.TestCase):
         after = collision_area(self.cut.GetCollisionOutput())
         self.assertLess(after, before - 1.0)  # mm^2 went with the piece
 
-    def bite_in_the_middle_of_the_border(self):
+    def bite_in_the_middle_of_the_border(self, where=0.5):
         monitors = self.meniscus.GetMonitorPointsOutput()
         self.blade.SetInstrument(1)
         self.blade.Update()
         bounds = self.blade.GetOutput().GetBounds()
         centre = (0.0, 0.5 * (bounds[2] + bounds[3]), 0.5 * (bounds[4] + bounds[5]))
-        self.blade.SetPose(punch_pose(monitors, centre))
+        self.blade.SetPose(punch_pose(monitors, centre, where))
         self.cut.Update()
         self.assertEqual(self.cut.GetLastErrorMessage(), "")
         self.assertTrue(self.cut.GetLastCutChangedTissue())
-        return monitors.GetPoint(monitors.GetNumberOfPoints() // 2)
+        return monitors.GetPoint(int(where * (monitors.GetNumberOfPoints() - 1)))
+
+    def test_settings_changed_between_bites_apply_to_the_next(self):
+        self.bite_in_the_middle_of_the_border()
+        self.assertEqual(self.rim_roughness(), 0.0)
+        self.cut.SetJaggedAmplitude(0.3)
+        self.bite_in_the_middle_of_the_border(0.3)
+        self.assertEqual(self.cut.GetNumberOfCuts(), 2)
+        self.assertGreater(self.rim_roughness(), 0.0)
+        # A new row count once cut is an error; the tissue stays as it was.
+        cells = self.cut.GetVisualOutput().GetNumberOfCells()
+        self.cut.SetCutSurfaceRows(3)
+        self.cut.GlobalWarningDisplayOff()
+        self.cut.Update()
+        self.assertIn("rows", self.cut.GetLastErrorMessage())
+        self.assertEqual(self.cut.GetVisualOutput().GetNumberOfCells(), cells)
+        self.assertEqual(self.cut.GetNumberOfCuts(), 2)
 
     def rim_roughness(self):
         field = self.cut.GetVisualOutput().GetFieldData()
