@@ -120,16 +120,17 @@ std::string typeLabel(const ::testing::TestParamInfo<SurgicalInstrumentType>& in
   return instrumentTypeName(info.param);
 }
 
-/// All the geometric invariants of one model; used for the defaults and
-/// for other valid parameter sets.
-void expectWellFormed(const SurgicalInstrumentModel& model)
+bool insideCentreLine(const SurgicalInstrumentModel& model, const Vector3& q)
 {
-  SCOPED_TRACE(model.name);
-  const TriangleMesh& visual = model.visual;
-  const SurgicalInstrumentParameters& p = model.parameters;
-  ASSERT_NO_THROW(visual.checkConsistency());
+  return std::any_of(model.centreLine.begin(),
+    model.centreLine.end(),
+    [&](const CollisionSegment& s) { return s.distanceToCentreLine(q) <= s.radius + 1e-9; });
+}
 
-  // Closed, 2-manifold, consistently oriented; every piece outward.
+/// The visual surface: closed, 2-manifold, consistently oriented, every
+/// piece outward; sized.
+void expectClosedOutwardSurface(const TriangleMesh& visual)
+{
   const MeshValidationReport report = validateTriangleMesh(visual);
   EXPECT_TRUE(report.isClosedManifold()) << report.toString();
   EXPECT_EQ(report.unreferencedVertices.count, 0u) << report.toString();
@@ -143,9 +144,12 @@ void expectWellFormed(const SurgicalInstrumentModel& model)
   }
   EXPECT_GT(visual.triangleCount(), 200u);
   EXPECT_LE(visual.triangleCount(), 6000u);
+}
 
-  // Unit vertex normals pointing out of their piece (checked on the whole
-  // mesh: area-weighted normals agree with the outward triangles).
+/// Unit vertex normals pointing out of their piece (checked on the whole
+/// mesh: area-weighted normals agree with the outward triangles).
+void expectOutwardNormals(const TriangleMesh& visual)
+{
   ASSERT_TRUE(visual.hasNormals());
   ASSERT_EQ(visual.normals.size(), visual.vertexCount());
   for (const Vector3& n : visual.normals)
@@ -162,8 +166,11 @@ void expectWellFormed(const SurgicalInstrumentModel& model)
     }
   }
   EXPECT_GT(agreement, 0.9 * 3.0 * visual.triangleCount());
+}
 
-  // Part labels.
+/// Every vertex labelled handle, shaft or working tip; each part present.
+void expectPartLabels(const TriangleMesh& visual)
+{
   ASSERT_TRUE(visual.pointAttributes.has(InstrumentPartArrayName));
   const AttributeArray& parts = visual.pointAttributes.get(InstrumentPartArrayName);
   ASSERT_EQ(parts.elementCount(), visual.vertexCount());
@@ -176,9 +183,15 @@ void expectWellFormed(const SurgicalInstrumentModel& model)
   EXPECT_GT(counts[static_cast<int>(InstrumentPart::Handle)], 0);
   EXPECT_GT(counts[static_cast<int>(InstrumentPart::Shaft)], 0);
   EXPECT_GT(counts[static_cast<int>(InstrumentPart::WorkingTip)], 0);
+}
 
-  // Tool frame: orthonormal, right-handed, at the tip, handle axis +z.
+/// The tool frame, and the tip at the far end of the mesh.
+void expectToolFrameAtTheTip(const SurgicalInstrumentModel& model)
+{
+  const TriangleMesh& visual = model.visual;
+  const SurgicalInstrumentParameters& p = model.parameters;
   const ToolFrame& frame = model.frame;
+  // Tool frame: orthonormal, right-handed, at the tip, handle axis +z.
   EXPECT_NEAR(frame.handleAxis.norm(), 1.0, 1e-12);
   EXPECT_NEAR(frame.up.norm(), 1.0, 1e-12);
   EXPECT_NEAR(frame.handleAxis.dot(frame.up), 0.0, 1e-12);
@@ -202,7 +215,14 @@ void expectWellFormed(const SurgicalInstrumentModel& model)
   EXPECT_GT(lowest, -1e-9);
   EXPECT_GE(highest, p.shaftLength + p.handleLength - 1e-9);
   EXPECT_LE(highest, p.shaftLength + p.handleLength + 40.0);
+}
 
+/// The collision centre line: capsules holding the shaft and the tip.
+void expectCentreLineHoldsTheShaft(const SurgicalInstrumentModel& model)
+{
+  const TriangleMesh& visual = model.visual;
+  const SurgicalInstrumentParameters& p = model.parameters;
+  const ToolFrame& frame = model.frame;
   // Centre line: a shaft capsule of the shaft radius up to the handle;
   // radii no larger than the shaft's; the capsules contain the tip and
   // every visual vertex between the tip plane and the handle.
@@ -225,12 +245,7 @@ void expectWellFormed(const SurgicalInstrumentModel& model)
       std::max({ reach, segment.start.dot(frame.handleAxis), segment.end.dot(frame.handleAxis) });
   }
   EXPECT_NEAR(reach, p.shaftLength, 1e-9);
-  const auto insideCapsules = [&](const Vector3& q)
-  {
-    return std::any_of(model.centreLine.begin(),
-      model.centreLine.end(),
-      [&](const CollisionSegment& s) { return s.distanceToCentreLine(q) <= s.radius + 1e-9; });
-  };
+  const auto insideCapsules = [&](const Vector3& q) { return insideCentreLine(model, q); };
   EXPECT_TRUE(insideCapsules(model.tip));
   int outside = 0;
   int checked = 0;
@@ -250,7 +265,13 @@ void expectWellFormed(const SurgicalInstrumentModel& model)
   }
   EXPECT_EQ(outside, 0);
   EXPECT_GT(checked, 50);
+}
 
+/// The cutting edge (scissors, scalpel) and the bite outline (punch, shavers).
+void expectCuttingFeatures(const SurgicalInstrumentModel& model)
+{
+  const TriangleMesh& visual = model.visual;
+  const ToolFrame& frame = model.frame;
   // Cutting edge: scissors and scalpel, from the tip toward the handle, on
   // the visual surface.
   if (hasCuttingEdge(model.type))
@@ -287,13 +308,27 @@ void expectWellFormed(const SurgicalInstrumentModel& model)
       EXPECT_NEAR((q - model.biteOutline.front()).dot(normal), 0.0, 1e-9);
       EXPECT_GT((model.biteOutline[(i + 1) % model.biteOutline.size()] - q).norm(), 1e-9)
         << "repeated point " << i;
-      EXPECT_TRUE(insideCapsules(q));
+      EXPECT_TRUE(insideCentreLine(model, q));
     }
   }
   else
   {
     EXPECT_TRUE(model.biteOutline.empty());
   }
+}
+
+/// All the geometric invariants of one model; used for the defaults and
+/// for other valid parameter sets.
+void expectWellFormed(const SurgicalInstrumentModel& model)
+{
+  SCOPED_TRACE(model.name);
+  ASSERT_NO_THROW(model.visual.checkConsistency());
+  expectClosedOutwardSurface(model.visual);
+  expectOutwardNormals(model.visual);
+  expectPartLabels(model.visual);
+  expectToolFrameAtTheTip(model);
+  expectCentreLineHoldsTheShaft(model);
+  expectCuttingFeatures(model);
 }
 
 TEST_P(EveryInstrument, DefaultModelIsWellFormed)
