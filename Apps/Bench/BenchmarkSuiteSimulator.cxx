@@ -26,6 +26,53 @@ namespace
 using namespace thintissue;
 using namespace thintissue::bench;
 
+/// The steps with a cut (a punch bite, a shaving pass, a scalpel stroke):
+/// their medians, whole and by stage (TrainingScene::lastCutTimes; issue
+/// 18's targets: a bite at most 2 ms, a shaving pass at most 0.5 ms).
+struct CutSteps
+{
+  int count = 0;
+  std::vector<double> whole, collision, simulation, embedding, visual, visualEmbedding, removal,
+    operation, scene, rest;
+
+  void add(const TrainingScene& scene, double seconds)
+  {
+    count = scene.metrics().operations;
+    const CutStepTimes& t = scene.lastCutTimes();
+    whole.push_back(seconds * 1e3);
+    collision.push_back(t.cutter.collisionMilliseconds);
+    simulation.push_back(t.cutter.simulationMilliseconds);
+    embedding.push_back(t.cutter.embeddingMilliseconds);
+    visual.push_back(t.cutter.visualMilliseconds);
+    visualEmbedding.push_back(t.cutter.visualEmbeddingMilliseconds);
+    removal.push_back(t.cutter.removalMilliseconds);
+    operation.push_back(t.operation);
+    this->scene.push_back(t.scene);
+    // Collision detection, the FEM step after the cut, wrinkles, metrics.
+    rest.push_back(seconds * 1e3 - t.cutter.totalMilliseconds - t.operation - t.scene);
+  }
+
+  void report(const std::string& name, BenchmarkReporter& reporter) const
+  {
+    if (whole.empty())
+      return;
+    const std::pair<const char*, const std::vector<double>*> stages[] = {
+      { "step with a cut", &whole },
+      { "cut stage: collision cut", &collision },
+      { "cut stage: hexahedra and solver update", &simulation },
+      { "cut stage: embeddings", &embedding },
+      { "cut stage: visual cut and cut surface", &visual },
+      { "cut stage: visual re-embedding", &visualEmbedding },
+      { "cut stage: piece removal", &removal },
+      { "operation around the cut (blade, piece volumes)", &operation },
+      { "scene after the cut (collision mesh, wrinkles, rim)", &scene },
+      { "rest of the step (contacts, FEM, wrinkles)", &rest },
+    };
+    for (const auto& [metric, values] : stages)
+      reporter.report(name, std::string(metric) + ", median", percentile(*values, 0.5), "ms");
+  }
+};
+
 /// Replays one shipped recording (its own scenario) and reports.
 void replayScenario(const std::string& recordingPath,
   const BenchmarkContext& context,
@@ -39,6 +86,7 @@ void replayScenario(const std::string& recordingPath,
   const double duration = context.quick ? std::min(1.0, scenario.duration) : scenario.duration;
   std::vector<double> steps;
   double slowestCut = 0.0;
+  CutSteps cuts;
   const auto start = std::chrono::steady_clock::now();
   while (scene.time() + 0.5 * scenario.timeStep < duration)
   {
@@ -48,8 +96,11 @@ void replayScenario(const std::string& recordingPath,
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
     steps.push_back(seconds);
-    if (scene.topologyVersion() != version)
+    if (scene.topologyVersion() != version && scene.metrics().operations != cuts.count)
+    {
       slowestCut = std::max(slowestCut, seconds);
+      cuts.add(scene, seconds);
+    }
   }
   const double wall =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -63,6 +114,7 @@ void replayScenario(const std::string& recordingPath,
   {
     reporter.report(name, "slowest step with a cut", slowestCut * 1e3, "ms");
     reporter.report(name, "operations", scene.metrics().operations, "cuts");
+    cuts.report(name, reporter);
   }
   reporter.report(name, "replay speed, rendering off", duration / wall, "x real time");
 }

@@ -7,12 +7,19 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 
 namespace thintissue
 {
 
 namespace
 {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+    .count();
+}
 
 PortalSettings portalOf(const PortalDescription& p)
 {
@@ -324,7 +331,9 @@ void TrainingScene::operate(const HapticToolState& instrument)
   command.pose = Tool.pose();
   command.jawOpening = JawOpening;
   command.working = pressed;
+  const auto start = std::chrono::steady_clock::now();
   const InstrumentActionResult done = Action->apply(*Cutter, command);
+  const double operation = millisecondsSince(start);
   if (done.contoured())
   {
     // The cut surface's rest positions moved (not the collision mesh): the
@@ -335,7 +344,18 @@ void TrainingScene::operate(const HapticToolState& instrument)
   }
   if (done.changed())
   {
+    const auto scene = std::chrono::steady_clock::now();
     takeCut(done);
+    LastCutTimes.scene = millisecondsSince(scene);
+    LastCutTimes.operation = operation - done.report.totalMilliseconds;
+    LastCutTimes.cutter = TissueCutReport();
+    LastCutTimes.cutter.collisionMilliseconds = done.report.collisionMilliseconds;
+    LastCutTimes.cutter.simulationMilliseconds = done.report.simulationMilliseconds;
+    LastCutTimes.cutter.embeddingMilliseconds = done.report.embeddingMilliseconds;
+    LastCutTimes.cutter.visualMilliseconds = done.report.visualMilliseconds;
+    LastCutTimes.cutter.visualEmbeddingMilliseconds = done.report.visualEmbeddingMilliseconds;
+    LastCutTimes.cutter.removalMilliseconds = done.report.removalMilliseconds;
+    LastCutTimes.cutter.totalMilliseconds = done.report.totalMilliseconds;
   }
 }
 

@@ -42,6 +42,17 @@ enum class ServoTicking
   Elsewhere
 };
 
+/// Where the last step with a cut spent its time (ms): the cutter's stages
+/// (TissueCutReport), the operation around it (InstrumentAction: the blade,
+/// the removed pieces' volumes), and the scene's part (wrinkles following
+/// the cut, the collision mesh rebuilt, the rim measured). For benchmarks.
+struct CutStepTimes
+{
+  TissueCutReport cutter; ///< timings only (its meshes' lists cleared)
+  double operation = 0.0;
+  double scene = 0.0;
+};
+
 class THINTISSUESCENE_EXPORT TrainingScene
 {
 public:
@@ -111,6 +122,8 @@ public:
   const RigidPose& instrumentPose() const { return Tool.pose(); }
   const RigidPose& scopePose() const { return ScopePose; }
   HapticServo& servo() { return *Servo; }
+  /// The times of the last step that cut (zero before the first).
+  const CutStepTimes& lastCutTimes() const { return LastCutTimes; }
   /// The collision scene of the last step (contacts, statistics).
   const CollisionScene& contacts() const { return Contacts; }
 
@@ -155,6 +168,7 @@ private:
   mutable std::shared_ptr<const SceneTopology> Topology;
   int CartilageObstacle = -1;
   SceneMetrics Metrics;
+  CutStepTimes LastCutTimes;
   std::string LastError;
 };
 

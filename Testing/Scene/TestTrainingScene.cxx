@@ -212,12 +212,19 @@ TEST(TrainingScene, ThePunchScenarioBitesTissueAwayAndReplaysBitForBit)
   const std::size_t before = a.scene.cutter()->activeTriangleCount();
   ASSERT_TRUE(a.scene.runTo(1.6)) << a.scene.lastError();
   EXPECT_EQ(a.scene.metrics().operations, 0) << "a bite before the jaws closed";
+  EXPECT_EQ(a.scene.lastCutTimes().cutter.totalMilliseconds, 0.0);
   // The first bite frees its piece (it did not while the recording held the
   // fixed jaw above the border: the tilted jaws missed the tissue under the
   // bite's proximal end, and the loop stayed open).
   ASSERT_TRUE(a.scene.runTo(2.15)) << a.scene.lastError();
   EXPECT_EQ(a.scene.metrics().operations, 1);
   EXPECT_GT(a.scene.metrics().removedVolume, 3.0);
+  // The bite's times, for the benchmark: its cut and the removal of its piece.
+  const CutStepTimes& bite = a.scene.lastCutTimes();
+  EXPECT_GT(bite.cutter.totalMilliseconds, 0.0);
+  EXPECT_GT(bite.cutter.removalMilliseconds, 0.0);
+  EXPECT_GE(bite.cutter.totalMilliseconds, bite.cutter.visualMilliseconds);
+  EXPECT_GT(bite.scene, 0.0);
   ASSERT_TRUE(a.scene.runTo(a.scenario.duration)) << a.scene.lastError();
   const SceneMetrics& m = a.scene.metrics();
   EXPECT_EQ(m.operations, 5);
