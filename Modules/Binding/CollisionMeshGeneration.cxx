@@ -45,6 +45,12 @@ constexpr double Infinity = std::numeric_limits<double>::infinity();
 /// menisci 1.9, the tibial cartilage 1.6, the steak 1.2, the cruciate
 /// ligaments 3.6-4.1) below which a tissue is never taken for a band.
 constexpr double MinimumBandElongation = 2.0;
+/// The least half thickness under a collision vertex, as a share of the
+/// largest thickness (tissue a twentieth as thick as its thickest): a
+/// vertex whose axis line only grazes the tissue (a strip beside a tear's
+/// gap narrower than the lattice, a staircase's edge) would get a radius
+/// of almost nothing that cannot reach the faces.
+constexpr double ThinnestShare = 0.025;
 
 std::string nameOf(const TriangleMesh& mesh)
 {
@@ -632,7 +638,8 @@ double distanceToPolygon(const std::vector<Vector2>& polygon, const Vector2& q)
 /// Points of a triangular lattice of spacing h inside the outline and out
 /// of its holes (loops[0] and the rest), at least `margin` from their
 /// edges, nearest the edges last; with `tissue`, only where the line along
-/// the axis meets the surface (not in the closed ends of a tear's gap).
+/// the axis meets the surface (not in the closed ends of a tear's gap) and
+/// the tissue is at least 2 `thinnest` thick there.
 /// Inside the region of an outline and its holes (inside an odd number of
 /// its loops).
 bool insideLoops(const std::vector<Loop>& loops, const Vector2& q)
@@ -658,7 +665,8 @@ double distanceToLoops(const std::vector<Loop>& loops, const Vector2& q)
 std::vector<Vector2> latticeInside(const std::vector<Loop>& loops,
   double h,
   double margin,
-  const ProjectedSurface* tissue = nullptr)
+  const ProjectedSurface* tissue = nullptr,
+  double thinnest = 0.0)
 {
   Vector2 low(Infinity, Infinity);
   Vector2 high(-Infinity, -Infinity);
@@ -687,7 +695,8 @@ std::vector<Vector2> latticeInside(const std::vector<Loop>& loops,
       const double d = distanceToLoops(loops, q);
       double bottom = 0.0;
       double top = 0.0;
-      if (d >= margin && (tissue == nullptr || tissue->crossing(q, bottom, top)))
+      if (d >= margin && (tissue == nullptr ||
+                           (tissue->crossing(q, bottom, top) && top - bottom >= 2.0 * thinnest)))
       {
         points.emplace_back(d, q);
       }
@@ -839,7 +848,7 @@ std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
     // nearest point where the tissue is at least a twentieth of its largest
     // thickness (rings of growing radius around it), so that its sphere
     // has a radius to reach the rim with.
-    const double thinnest = 0.025 * largestThickness;
+    const double thinnest = ThinnestShare * largestThickness;
     for (Vector2& q : border)
     {
       double middle = 0.0;
@@ -869,7 +878,8 @@ std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
 std::vector<Vector2> interiorLattice(const ProjectedSurface& surface,
   const std::vector<Loop>& borders,
   int interiorCount,
-  double extent)
+  double extent,
+  double largestThickness)
 {
   double perimeter = 0.0;
   std::size_t count = 0;
@@ -888,8 +898,8 @@ std::vector<Vector2> interiorLattice(const ProjectedSurface& surface,
   for (int iteration = 0; iteration < 60; ++iteration)
   {
     const double h = std::sqrt(small * large);
-    std::vector<Vector2> points =
-      latticeInside(borders, h, 0.45 * std::min(h, borderSpacing), &surface);
+    std::vector<Vector2> points = latticeInside(
+      borders, h, 0.45 * std::min(h, borderSpacing), &surface, ThinnestShare * largestThickness);
     if (static_cast<int>(points.size()) >= interiorCount)
     {
       small = h;
@@ -1326,7 +1336,8 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
   // 3. Interior lattice with the count that makes vertexCount in all.
   report(progress, 0.4, "filling the inside");
   const int interiorCount = vertexCount - borderCount;
-  std::vector<Vector2> interior = interiorLattice(surface, borders, interiorCount, extent);
+  std::vector<Vector2> interior =
+    interiorLattice(surface, borders, interiorCount, extent, result.largestThickness);
   if (static_cast<int>(interior.size()) < interiorCount)
   {
     throw InvalidInputError(nameOf(visual) + ": the outline leaves no room for " +

@@ -365,3 +365,21 @@ TEST(SegmentationSweep, WedgeRimsBeyondFourRadiiAreReached)
 {
   EXPECT_EQ(prepareAndCheck(segmented(tissueModel("Meniscus"), sweepCase(1017)), true), "");
 }
+// A strip between a tear's gap and the inner rim, narrower than the lattice
+// (the longitudinal tear of seed 1001), held an inner collision vertex
+// whose axis line only grazed the tissue: radius 1.4e-5 mm, and the
+// binding refused it ("is not thin at collision vertex 97"). Inner
+// vertices now stand where the tissue is at least a twentieth of its
+// largest thickness, as border vertices do.
+TEST(SegmentationSweep, NoCollisionVertexStandsOnASliverOfTissue)
+{
+  const TriangleMesh visual =
+    closeSmallTunnels(segmented(tissueModel("LongitudinalTear"), sweepCase(1001)));
+  CollisionMeshSettings settings;
+  settings.vertexCount = 105;
+  const GeneratedCollisionMesh generated = makeCollisionMidSurface(visual, settings);
+  const std::vector<double>& radii = generated.mesh.pointAttributes.get("Radius").values;
+  const auto thinnest = std::min_element(radii.begin(), radii.end());
+  EXPECT_GE(*thinnest, 0.0249 * generated.largestThickness)
+    << "collision vertex " << thinnest - radii.begin();
+}
