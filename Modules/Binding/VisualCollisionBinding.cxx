@@ -1160,7 +1160,10 @@ std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
                               " finds its positive visual vertex, and collision vertex " +
                               std::to_string(firstVoter[2 * p + 1]) +
                               " its negative one, on one piece of the visual surface between "
-                              "the rim paths (the collision normals are not consistent, the "
+                              "the rim paths (" +
+                              std::to_string(votes[p][0]) + " positive and " +
+                              std::to_string(votes[p][1]) +
+                              " negative ones there; the collision normals are not consistent, the "
                               "border does not run around the visual rim, or tunnels through "
                               "the tissue join its sides: the visual surface has genus " +
                               std::to_string(adjacency.closedSurfaceGenus()) + ")");
