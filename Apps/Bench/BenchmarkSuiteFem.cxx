@@ -55,6 +55,15 @@ double threadCpuMilliseconds()
   return 1e3 * static_cast<double>(now.tv_sec) + 1e-6 * static_cast<double>(now.tv_nsec);
 }
 
+/// Whether a measurement is wanted: THINTISSUE_BENCH_FEM_FILTER, when set,
+/// is a substring its label must contain (e.g. "1,000 hexahedra), automatic"),
+/// so that a profile or a before/after comparison runs one case only.
+bool wanted(const std::string& label)
+{
+  const char* filter = std::getenv("THINTISSUE_BENCH_FEM_FILTER");
+  return filter == nullptr || label.find(filter) != std::string::npos;
+}
+
 /// Times `steps` single steps under a load at the node farthest from the
 /// fixed ones, after `warmUp` steps have set the deformation going.
 StepStatistics measureSteps(const FemCase& c,
@@ -154,15 +163,17 @@ void reportFactorizationChoices(BenchmarkReporter& reporter,
   {
     for (const auto& [name, ordering] : orderings)
     {
+      const std::string label = c.name + ", CHOLMOD " + (supernodal ? "supernodal" : "simplicial") +
+                                ", " + name + " ordering";
+      if (!wanted(label))
+      {
+        continue;
+      }
       CorotationalHexFemSettings settings = solverSettings(LinearSolverKind::Cholmod);
       settings.factorOrdering = ordering;
       settings.supernodalThreshold = supernodal ? 0 : std::numeric_limits<int>::max();
       const StepStatistics statistics = measureSteps(c, settings, steps, warmUp);
-      reporter.report(c.name + ", CHOLMOD " + (supernodal ? "supernodal" : "simplicial") + ", " +
-                        name + " ordering",
-        "step time",
-        statistics.medianMilliseconds,
-        "ms");
+      reporter.report(label, "step time", statistics.medianMilliseconds, "ms");
     }
   }
 }
@@ -262,17 +273,29 @@ THINTISSUE_BENCHMARK_SUITE(femSuite,
     for (const NamedSolver& solver : allSolvers)
     {
       const bool slow = huge && solver.kind == LinearSolverKind::ConjugateGradient;
+      if (!wanted(c.name + ", " + solver.name))
+      {
+        continue;
+      }
       reportSteps(reporter,
         c.name + ", " + solver.name,
         measureSteps(c, solverSettings(solver.kind), slow ? 3 : steps, slow ? 1 : warmUp),
         c.thesisMilliseconds);
+    }
+    const std::string serialLabel = c.name + ", automatic, assembly on one thread";
+    if (hexahedra >= 1000 && wanted(serialLabel))
+    {
+      // Against "automatic": what the parallel (coloured) assembly gains.
+      CorotationalHexFemSettings serial = solverSettings(LinearSolverKind::Automatic);
+      serial.assemblyThreads = 1;
+      reportSteps(reporter, serialLabel, measureSteps(c, serial, steps, warmUp), std::nullopt);
     }
     if (hexahedra >= 1000 && !context.quick)
     {
       reportFactorizationChoices(reporter, c, huge ? 2 : 20, 1);
     }
   }
-  if (!context.quick)
+  if (!context.quick && wanted("block (100,000 hexahedra), block-Jacobi conjugate gradient"))
   {
     // Beyond what a factor can refresh: the iterative path only.
     const FemCase hundredThousand{
@@ -284,6 +307,10 @@ THINTISSUE_BENCHMARK_SUITE(femSuite,
       std::nullopt);
   }
 
+  if (!wanted("visual vertices"))
+  {
+    return;
+  }
   // Positions down from the hexahedra to a 1M-vertex visual mesh (x = H u).
   ThinSheetParameters big;
   big.visualCellsX = big.visualCellsY = context.quick ? 100 : 707; // 1,002,528 vertices

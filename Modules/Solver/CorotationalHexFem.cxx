@@ -6,6 +6,10 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -57,6 +61,10 @@ void checkSettings(const CorotationalHexFemSettings& s)
                "(got "
             << s.backgroundRefactorizationLag << ", " << s.staleFactorIterationCap << ")";
   }
+  else if (s.assemblyThreads < 0)
+  {
+    problem << "assembly threads must not be negative (got " << s.assemblyThreads << ")";
+  }
   if (problem.tellp() != 0)
   {
     throw InvalidInputError("co-rotational FEM settings: " + problem.str());
@@ -68,14 +76,16 @@ void checkSettings(const CorotationalHexFemSettings& s)
 class CholmodFactor
 {
 public:
-  /// Forgets the pattern analysis (after a topology change).
-  void reset() { Analysed = false; }
-  /// Factorizes `matrix` (upper triangle), analysing its pattern first if
-  /// needed with the mode and ordering of `settings`; false if not positive
-  /// definite.
-  bool factorize(const SparseMatrix& matrix, const CorotationalHexFemSettings& settings)
+  /// Factorizes `matrix` (upper triangle) of pattern `pattern` (a count of
+  /// the patterns built), analysing it first if the factor was analysed for
+  /// another, with the mode and ordering of `settings`; false if not
+  /// positive definite.
+  bool factorize(const SparseMatrix& matrix,
+    long long pattern,
+    const CorotationalHexFemSettings& settings)
   {
-    if (!Analysed)
+    const SerialOpenMpScope serial; // see SerialOpenMpScope: same bits, half the CPU
+    if (AnalysedPattern != pattern)
     {
       useOneBlasThread();
       const bool supernodal = matrix.rows() >= settings.supernodalThreshold;
@@ -91,7 +101,7 @@ public:
       common.method[0].ordering = orderingCode(ordering);
       common.postorder = 1;
       Decomposition.analyzePattern(matrix);
-      Analysed = true;
+      AnalysedPattern = pattern;
     }
     Decomposition.factorize(matrix);
     return Decomposition.info() == Eigen::Success;
@@ -115,7 +125,7 @@ private:
     }
   }
   Eigen::CholmodDecomposition<SparseMatrix, Eigen::Upper> Decomposition;
-  bool Analysed = false;
+  long long AnalysedPattern = -1;
 };
 
 /// A refactorization running on a worker thread (the stale factor refreshed
@@ -126,6 +136,11 @@ struct BackgroundRefactorization
 {
   SparseMatrix matrix;
   std::unique_ptr<CholmodFactor> factor = std::make_unique<CholmodFactor>();
+  /// The pattern and the step of `matrix`: a refresh of an older pattern
+  /// than the system's (a cut came in between), or older than a factor made
+  /// in a step since, is dropped when it lands, not waited for at once.
+  long long pattern = -1;
+  long long startStep = -1;
   std::thread worker;
   bool ok = false;
   /// Step index at which it lands; -1 when none runs.
@@ -159,6 +174,10 @@ struct CorotationalHexFem::LinearSystem
   /// A factor exists for the present pattern (for the Cholmod kind: of the
   /// current matrix; for the stale-factor kind: of an earlier step's).
   bool factorValid = false;
+  /// The step whose matrix `factor` is of.
+  long long factorStep = -1;
+  /// Patterns built so far: which one a factor was analysed for.
+  long long pattern = 0;
   int factorizations = 0;
   int synchronousFactorizations = 0;
   BackgroundRefactorization refresh;
@@ -175,6 +194,14 @@ struct CorotationalHexFem::LinearSystem
   std::vector<std::array<int, 6>> nodalBlockOffsets;
   std::vector<Eigen::Matrix3d> nodalBlockInverses;
   bool nodalBlocksInverted = false; // of the current matrix
+  /// The active elements by colour (no two of a colour share a node) and
+  /// where each colour starts; the last colour, if any beyond
+  /// ParallelColourLimit, is assembled serially.
+  std::vector<int> colouredElements;
+  std::vector<int> colourStarts;
+  /// The threads of the assembly (Settings.assemblyThreads).
+  std::unique_ptr<tbb::task_arena> arena;
+  int arenaThreads = -1;
 };
 
 CorotationalHexFem::CorotationalHexFem(const HexahedralMesh& mesh,
@@ -468,79 +495,75 @@ void CorotationalHexFem::replaceHexahedronNodes(std::size_t h, const Hexahedron&
   TopologyChanged = true;
 }
 
-void CorotationalHexFem::prepareSystem()
+std::vector<std::vector<int>> CorotationalHexFem::blockRowsAbove() const
 {
-  LinearSystem& s = *System;
-  if (!TopologyChanged)
-  {
-    return;
-  }
-  // Simulated nodes: free and used by an active hexahedron.
-  std::vector<std::uint8_t> used(Positions.size(), 0);
-  for (const auto& element : Elements)
-  {
-    if (element.active)
-    {
-      for (int node : element.nodes)
-      {
-        used[node] = 1;
-      }
-    }
-  }
-  s.dofOfNode.assign(Positions.size(), -1);
-  s.dofCount = 0;
-  for (std::size_t n = 0; n < Positions.size(); ++n)
-  {
-    if (used[n] && !Fixed[n])
-    {
-      s.dofOfNode[n] = s.dofCount;
-      s.dofCount += 3;
-    }
-  }
-  std::vector<Eigen::Triplet<double, int>> pattern;
-  pattern.reserve(Elements.size() * 300 + s.dofCount);
-  for (int d = 0; d < s.dofCount; ++d)
-  {
-    pattern.emplace_back(d, d, 0.0);
-  }
+  // Per simulated node (DOF / 3), the simulated nodes sharing an active
+  // hexahedron with it whose DOFs are not higher, itself last: the block
+  // rows of its columns in the upper triangle.
+  const LinearSystem& s = *System;
+  std::vector<std::vector<int>> above(s.dofCount / 3);
   for (const auto& element : Elements)
   {
     if (!element.active)
     {
       continue;
     }
-    for (int a = 0; a < 8; ++a)
+    for (int a : element.nodes)
     {
-      for (int b = 0; b < 8; ++b)
+      for (int b : element.nodes)
       {
-        const int ra = s.dofOfNode[element.nodes[a]];
-        const int cb = s.dofOfNode[element.nodes[b]];
-        if (ra < 0 || cb < 0)
+        const int ra = s.dofOfNode[a];
+        const int cb = s.dofOfNode[b];
+        if (ra >= 0 && cb >= 0 && ra <= cb)
         {
-          continue;
-        }
-        for (int i = 0; i < 3; ++i)
-        {
-          for (int j = 0; j < 3; ++j)
-          {
-            if (ra + i <= cb + j)
-            {
-              pattern.emplace_back(ra + i, cb + j, 0.0);
-            }
-          }
+          above[cb / 3].push_back(ra / 3);
         }
       }
     }
   }
-  s.matrix.resize(s.dofCount, s.dofCount);
-  s.matrix.setFromTriplets(pattern.begin(), pattern.end());
-  s.matrix.makeCompressed();
-  auto offsetOf = [&s](int row, int column)
+  for (auto& rows : above)
   {
-    const int* begin = s.matrix.innerIndexPtr() + s.matrix.outerIndexPtr()[column];
-    const int* end = s.matrix.innerIndexPtr() + s.matrix.outerIndexPtr()[column + 1];
-    const int* found = std::lower_bound(begin, end, row);
-    return static_cast<int>(found - s.matrix.innerIndexPtr());
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  }
+  return above;
+}
+
+void CorotationalHexFem::buildPattern()
+{
+  // The upper triangle's CSC pattern straight from the node adjacency (no
+  // triplets): column 3b + j holds, for each block row a of `above[b]`,
+  // rows 3a .. 3a + 2 (of the diagonal block only up to 3b + j), so entry
+  // (3a + i, 3b + j) sits at column start + 3 rank(a) + i.
+  LinearSystem& s = *System;
+  const std::vector<std::vector<int>> above = blockRowsAbove();
+  s.matrix.resize(s.dofCount, s.dofCount);
+  std::vector<int> starts(s.dofCount + 1, 0);
+  for (int d = 0; d < s.dofCount; ++d)
+  {
+    starts[d + 1] = starts[d] + 3 * static_cast<int>(above[d / 3].size() - 1) + d % 3 + 1;
+  }
+  s.matrix.resizeNonZeros(starts.back());
+  std::copy(starts.begin(), starts.end(), s.matrix.outerIndexPtr());
+  int* rows = s.matrix.innerIndexPtr();
+  for (int d = 0; d < s.dofCount; ++d)
+  {
+    int k = starts[d];
+    for (int a : above[d / 3])
+    {
+      for (int i = 0; i < 3 && 3 * a + i <= d; ++i)
+      {
+        rows[k++] = 3 * a + i;
+      }
+    }
+  }
+  std::fill(s.matrix.valuePtr(), s.matrix.valuePtr() + starts.back(), 0.0);
+  auto offsetOf = [&](int row, int column)
+  {
+    const std::vector<int>& blockRows = above[column / 3];
+    const auto rank =
+      std::lower_bound(blockRows.begin(), blockRows.end(), row / 3) - blockRows.begin();
+    return starts[column] + 3 * static_cast<int>(rank) + row % 3;
   };
   s.diagonalOffsets.resize(s.dofCount);
   for (int d = 0; d < s.dofCount; ++d)
@@ -574,30 +597,67 @@ void CorotationalHexFem::prepareSystem()
       {
         const int ra = s.dofOfNode[Elements[e].nodes[a]];
         const int cb = s.dofOfNode[Elements[e].nodes[b]];
-        if (ra < 0 || cb < 0)
+        for (int k = 0; k < 9 && ra >= 0 && cb >= 0; ++k)
         {
-          continue;
-        }
-        for (int i = 0; i < 3; ++i)
-        {
-          for (int j = 0; j < 3; ++j)
+          if (ra + k / 3 <= cb + k % 3)
           {
-            if (ra + i <= cb + j)
-            {
-              offsets[(a * 8 + b) * 9 + i * 3 + j] = offsetOf(ra + i, cb + j);
-            }
+            offsets[(a * 8 + b) * 9 + k] = offsetOf(ra + k / 3, cb + k % 3);
           }
         }
       }
     }
   }
+}
+
+void CorotationalHexFem::prepareSystem()
+{
+  LinearSystem& s = *System;
+  if (!TopologyChanged)
+  {
+    return;
+  }
+  // The last solution in node terms, the warm start of the next solve.
+  const std::vector<int> previousDofOfNode = std::move(s.dofOfNode);
+  const Eigen::VectorXd previousSolution = std::move(s.previousSolution);
+  // Simulated nodes: free and used by an active hexahedron.
+  std::vector<std::uint8_t> used(Positions.size(), 0);
+  for (const auto& element : Elements)
+  {
+    if (element.active)
+    {
+      for (int node : element.nodes)
+      {
+        used[node] = 1;
+      }
+    }
+  }
+  s.dofOfNode.assign(Positions.size(), -1);
+  s.dofCount = 0;
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    if (used[n] && !Fixed[n])
+    {
+      s.dofOfNode[n] = s.dofCount;
+      s.dofCount += 3;
+    }
+  }
+  buildPattern();
+  colourElements();
   s.rhs.resize(s.dofCount);
   s.solution.setZero(s.dofCount);
   s.previousSolution.setZero(s.dofCount);
+  for (std::size_t n = 0; n < previousDofOfNode.size(); ++n)
+  {
+    if (previousDofOfNode[n] >= 0 && s.dofOfNode[n] >= 0)
+    {
+      s.previousSolution.segment<3>(s.dofOfNode[n]) =
+        previousSolution.segment<3>(previousDofOfNode[n]);
+    }
+  }
   s.forces.assign(Positions.size(), Vector3::Zero());
-  cancelBackgroundRefactorization();
-  s.refresh.factor->reset();
-  s.factor->reset();
+  // A refresh under way is left to finish and dropped when due (no wait in
+  // this step); the factor is of another numbering.
+  ++s.pattern;
   s.factorValid = false;
   TopologyChanged = false;
 }
@@ -663,6 +723,100 @@ Vector3 CorotationalHexFem::contactForce(const EmbeddedContact& c,
          frictionDamping * (velocity - normalSpeed * c.normal);
 }
 
+void CorotationalHexFem::colourElements()
+{
+  // Greedy colouring: no two elements of one colour share a node, so the
+  // elements of a colour scatter into disjoint matrix entries and nodal
+  // forces and assemble in parallel, and every sum is taken in the same
+  // order (colour by colour) whatever the number of threads: the same bits.
+  // A regular hexahedral grid takes 8 colours.
+  LinearSystem& s = *System;
+  std::vector<std::uint64_t> nodeColours(Positions.size(), 0);
+  std::vector<int> colourOf(Elements.size(), -1);
+  std::vector<int> counts(ParallelColourLimit + 1, 0);
+  for (std::size_t e = 0; e < Elements.size(); ++e)
+  {
+    if (!Elements[e].active)
+    {
+      continue;
+    }
+    std::uint64_t used = 0;
+    for (int node : Elements[e].nodes)
+    {
+      used |= nodeColours[node];
+    }
+    // Beyond 64 colours (a node in more elements than any grid has) the
+    // elements go to a last colour assembled serially.
+    const int colour = used == ~std::uint64_t(0) ? ParallelColourLimit : __builtin_ctzll(~used);
+    if (colour < ParallelColourLimit)
+    {
+      for (int node : Elements[e].nodes)
+      {
+        nodeColours[node] |= std::uint64_t(1) << colour;
+      }
+    }
+    colourOf[e] = colour;
+    ++counts[colour];
+  }
+  s.colourStarts.assign(1, 0);
+  for (int colour = 0; colour <= ParallelColourLimit; ++colour)
+  {
+    if (counts[colour] > 0)
+    {
+      s.colourStarts.push_back(s.colourStarts.back() + counts[colour]);
+    }
+  }
+  s.colouredElements.clear();
+  s.colouredElements.reserve(s.colourStarts.back());
+  for (int colour = 0; colour <= ParallelColourLimit; ++colour)
+  {
+    for (std::size_t e = 0; e < Elements.size(); ++e)
+    {
+      if (colourOf[e] == colour)
+      {
+        s.colouredElements.push_back(static_cast<int>(e));
+      }
+    }
+  }
+}
+
+void CorotationalHexFem::assembleElement(std::size_t e,
+  double stiffnessScale,
+  double velocityStiffnessScale,
+  std::vector<Vector3>& forces)
+{
+  Element& element = Elements[e];
+  const Eigen::Matrix3d rotation = currentRotation(element);
+  element.rotation = rotation;
+  accumulateElasticForce(element, rotation, velocityStiffnessScale, -1.0, forces);
+  // Rotated stiffness blocks R K_ab R^T into the matrix's upper triangle:
+  // a block whose first entry has no place lies below the diagonal or on a
+  // fixed node (a diagonal block, a == b, is half in).
+  const auto& offsets = System->elementOffsets[e];
+  double* values = System->matrix.valuePtr();
+  for (int a = 0; a < 8; ++a)
+  {
+    for (int b = 0; b < 8; ++b)
+    {
+      const int* blockOffsets = offsets.data() + (a * 8 + b) * 9;
+      if (blockOffsets[2] < 0)
+      {
+        continue; // entry (0, 2) is in the upper triangle of every block that has one
+      }
+      const Eigen::Matrix3d block = stiffnessScale * rotation *
+                                    element.rest.stiffness.block<3, 3>(3 * a, 3 * b) *
+                                    rotation.transpose();
+      for (int k = 0; k < 9; ++k)
+      {
+        if (blockOffsets[k] >= 0)
+        {
+          values[blockOffsets[k]] += block(k / 3, k % 3);
+        }
+      }
+    }
+  }
+}
+
 void CorotationalHexFem::assemble(double stiffnessScale,
   double massScale,
   double velocityStiffnessScale,
@@ -673,42 +827,38 @@ void CorotationalHexFem::assemble(double stiffnessScale,
   double* values = s.matrix.valuePtr();
   std::fill(values, values + s.matrix.nonZeros(), 0.0);
   s.nodalBlocksInverted = false;
-  for (std::size_t e = 0; e < Elements.size(); ++e)
+  const int threads = Settings.assemblyThreads;
+  const bool parallel = threads != 1 && s.colourStarts.back() >= ParallelAssemblyMinimumElements;
+  if (parallel && s.arenaThreads != threads)
   {
-    Element& element = Elements[e];
-    if (!element.active)
+    const int automatic = tbb::task_arena::automatic; // a value, not the static member
+    s.arena = std::make_unique<tbb::task_arena>(threads > 0 ? threads : automatic);
+    s.arenaThreads = threads;
+  }
+  for (std::size_t colour = 0; colour + 1 < s.colourStarts.size(); ++colour)
+  {
+    const int* first = s.colouredElements.data() + s.colourStarts[colour];
+    const int count = s.colourStarts[colour + 1] - s.colourStarts[colour];
+    const bool serialColour =
+      colour + 2 == s.colourStarts.size() && s.colourStarts.size() > ParallelColourLimit + 1;
+    auto assembleRange = [&](int begin, int end)
     {
+      for (int k = begin; k < end; ++k)
+      {
+        assembleElement(first[k], stiffnessScale, velocityStiffnessScale, forces);
+      }
+    };
+    if (!parallel || serialColour)
+    {
+      assembleRange(0, count);
       continue;
     }
-    const Eigen::Matrix3d rotation = currentRotation(element);
-    element.rotation = rotation;
-    accumulateElasticForce(element, rotation, velocityStiffnessScale, -1.0, forces);
-    // Rotated stiffness blocks R K_ab R^T into the matrix.
-    const auto& offsets = s.elementOffsets[e];
-    for (int a = 0; a < 8; ++a)
-    {
-      for (int b = 0; b < 8; ++b)
+    s.arena->execute(
+      [&]
       {
-        const int* blockOffsets = offsets.data() + (a * 8 + b) * 9;
-        if (std::all_of(blockOffsets, blockOffsets + 9, [](int o) { return o < 0; }))
-        {
-          continue;
-        }
-        const Eigen::Matrix3d block = stiffnessScale * rotation *
-                                      element.rest.stiffness.block<3, 3>(3 * a, 3 * b) *
-                                      rotation.transpose();
-        for (int i = 0; i < 3; ++i)
-        {
-          for (int j = 0; j < 3; ++j)
-          {
-            if (blockOffsets[i * 3 + j] >= 0)
-            {
-              values[blockOffsets[i * 3 + j]] += block(i, j);
-            }
-          }
-        }
-      }
-    }
+        tbb::parallel_for(tbb::blocked_range<int>(0, count, 64),
+          [&](const tbb::blocked_range<int>& range) { assembleRange(range.begin(), range.end()); });
+      });
   }
   for (std::size_t n = 0; n < Positions.size(); ++n)
   {
@@ -852,7 +1002,8 @@ void CorotationalHexFem::assembleContacts(double h)
 bool CorotationalHexFem::factorize(std::string& message)
 {
   LinearSystem& s = *System;
-  s.factorValid = s.factor->factorize(s.matrix, Settings);
+  s.factorValid = s.factor->factorize(s.matrix, s.pattern, Settings);
+  s.factorStep = s.stepIndex;
   ++s.factorizations;
   ++s.synchronousFactorizations;
   s.excessIterations = 0;
@@ -880,15 +1031,17 @@ void CorotationalHexFem::startBackgroundRefactorization()
     return; // one at a time
   }
   refresh.matrix = s.matrix; // this step's matrix; the next steps reassemble theirs
+  refresh.pattern = s.pattern;
+  refresh.startStep = s.stepIndex;
   refresh.dueStep = s.stepIndex + Settings.backgroundRefactorizationLag;
   refresh.worker = std::thread(
-    [&refresh, settings = Settings, hook = s.backgroundHook]
+    [&refresh, pattern = s.pattern, settings = Settings, hook = s.backgroundHook]
     {
       if (hook)
       {
         hook();
       }
-      refresh.ok = refresh.factor->factorize(refresh.matrix, settings);
+      refresh.ok = refresh.factor->factorize(refresh.matrix, pattern, settings);
     });
 }
 
@@ -903,10 +1056,11 @@ void CorotationalHexFem::landBackgroundRefactorization()
   refresh.worker.join(); // waits if unfinished: the swap step is fixed
   refresh.dueStep = -1;
   ++s.factorizations;
-  if (refresh.ok)
+  if (refresh.ok && refresh.pattern == s.pattern && refresh.startStep > s.factorStep)
   {
     std::swap(s.factor, refresh.factor); // the old factor is reused for the next refresh
     s.factorValid = true;
+    s.factorStep = refresh.startStep;
     s.excessIterations = 0;
   }
 }
@@ -998,8 +1152,7 @@ bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
   {
     if (!s.factorValid)
     {
-      cancelBackgroundRefactorization(); // of an older matrix than this one
-      if (!factorize(message))
+      if (!factorize(message)) // a refresh under way, of an older matrix, will be dropped
       {
         return false;
       }

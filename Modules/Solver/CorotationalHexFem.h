@@ -130,7 +130,20 @@ struct CorotationalHexFemSettings
   /// With a background refresh, the iterations a stale factor may take
   /// before the step gives it up and refactorizes synchronously. At least 1.
   int staleFactorIterationCap = 40;
+  /// Threads of the element assembly (rotations, forces, rotated
+  /// stiffness): 0 for all cores (TBB's default), 1 for the calling thread
+  /// only. Not negative. The results are the same bits for any count (the
+  /// elements are coloured; see ParallelAssemblyMinimumElements).
+  int assemblyThreads = 0;
 };
+
+/// Active hexahedra from which the assembly runs on several threads.
+/// Elements of one colour share no node, so each colour is assembled in
+/// parallel and the colours in order. Measured (issue 20): ...
+constexpr int ParallelAssemblyMinimumElements = 256;
+/// Colours (bits of a node's mask) of the parallel assembly; elements that
+/// need more go to one last colour assembled serially.
+constexpr int ParallelColourLimit = 64;
 
 /// A penalty contact on a point embedded in a hexahedron (thesis 5.1,
 /// response): the point x_p = sum_a w_a x_a, moving at v_p relative to the
@@ -335,6 +348,12 @@ private:
   /// R of the element at the current positions (identity for linear FEM).
   Eigen::Matrix3d currentRotation(const Element& element) const;
   void prepareSystem();
+  /// Per simulated node, the simulated nodes it shares a hexahedron with
+  /// whose DOFs are not higher (sorted, itself last).
+  std::vector<std::vector<int>> blockRowsAbove() const;
+  /// The upper-triangular pattern of the present numbering and where each
+  /// element block, diagonal entry and nodal block lands in it.
+  void buildPattern();
   /// Rotations from the current positions; elastic (+ damping-stiffness)
   /// force accumulated into `forces`; the stiffness scaled by `stiffnessScale`
   /// and the masses by `massScale` assembled into the system matrix.
@@ -366,6 +385,14 @@ private:
   void landBackgroundRefactorization();
   /// Waits for a running background refactorization and drops it.
   void cancelBackgroundRefactorization();
+  /// Groups the active elements by colour for the parallel assembly.
+  void colourElements();
+  /// Element e's rotation, elastic force (into `forces`) and rotated
+  /// stiffness (into the matrix values).
+  void assembleElement(std::size_t e,
+    double stiffnessScale,
+    double velocityStiffnessScale,
+    std::vector<Vector3>& forces);
   /// Adds the linearised contacts to the matrix and the right-hand side.
   void assembleContacts(double h);
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
+#include <utility>
 
 namespace thintissue
 {
@@ -77,6 +78,40 @@ void useOneBlasThread()
         setThreads(1);
       }
     });
+}
+
+namespace
+{
+using GetLevelsFunction = int (*)();
+using SetLevelsFunction = void (*)(int);
+
+/// The OpenMP runtime's max-active-levels functions (libgomp, loaded with
+/// CHOLMOD), or null.
+std::pair<GetLevelsFunction, SetLevelsFunction> openMpLevelFunctions()
+{
+  static const auto functions = std::make_pair(
+    reinterpret_cast<GetLevelsFunction>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels")),
+    reinterpret_cast<SetLevelsFunction>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels")));
+  return functions;
+}
+} // namespace
+
+SerialOpenMpScope::SerialOpenMpScope()
+{
+  const auto [getLevels, setLevels] = openMpLevelFunctions();
+  if (getLevels != nullptr && setLevels != nullptr)
+  {
+    PreviousLevels = getLevels();
+    setLevels(0);
+  }
+}
+
+SerialOpenMpScope::~SerialOpenMpScope()
+{
+  if (PreviousLevels >= 0)
+  {
+    openMpLevelFunctions().second(PreviousLevels);
+  }
 }
 
 } // namespace thintissue

@@ -36,6 +36,28 @@ THINTISSUESOLVER_EXPORT BlasLibrary loadedBlasLibrary();
 /// ms of CPU against 33 with one thread (and up to 30 times the wall time).
 THINTISSUESOLVER_EXPORT void useOneBlasThread();
 
+/// While it lives, OpenMP regions started by the calling thread run on that
+/// thread alone (its max-active-levels ICV set to 0, restored after).
+/// CHOLMOD 3 (SuiteSparse 5.12) opens regions of CHOLMOD_OMP_NUM_THREADS =
+/// 4 threads in its supernodal factorization to copy and clear memory, and
+/// no setting of cholmod_common limits them; their spinning doubled the CPU
+/// of a factorization on the busy 2-core machine (1,000 hexahedra: 33 ms
+/// against 16 ms with OMP_THREAD_LIMIT=1). The regions copy disjoint
+/// entries, so the factor is the same bits with any number of threads. An
+/// ICV is per thread: each thread that factorizes holds one of these. A
+/// no-op when no OpenMP runtime is loaded.
+class THINTISSUESOLVER_EXPORT SerialOpenMpScope
+{
+public:
+  SerialOpenMpScope();
+  ~SerialOpenMpScope();
+  SerialOpenMpScope(const SerialOpenMpScope&) = delete;
+  SerialOpenMpScope& operator=(const SerialOpenMpScope&) = delete;
+
+private:
+  int PreviousLevels = -1;
+};
+
 } // namespace thintissue
 
 #endif

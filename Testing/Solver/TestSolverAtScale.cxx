@@ -12,6 +12,7 @@
 #include <chrono>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <random>
 #include <thread>
 
@@ -226,6 +227,115 @@ TEST(SolverAtScale, BackgroundRefreshLeavesTheStepsToTheStaleFactor)
   EXPECT_GT(fem.synchronousFactorizationCount(), 1);
 }
 
+TEST(SolverAtScale, ParallelAssemblyGivesTheSameBitsWithOneOrTwoThreads)
+{
+  // The elements are coloured (no two of a colour share a node), each
+  // colour assembled in parallel: every sum is taken in the same order.
+  const HexahedralMesh mesh = fixedBlock(20, 10, 5); // beyond ParallelAssemblyMinimumElements
+  ASSERT_GE(static_cast<int>(mesh.hexahedronCount()), ParallelAssemblyMinimumElements);
+  CorotationalHexFemSettings settings = withSolver(LinearSolverKind::Cholmod);
+  settings.assemblyThreads = 1;
+  const std::vector<Vector3> serial = pushAndStep(mesh, tissue(10.0), settings, 8);
+  ASSERT_GT(largestDisplacement(mesh, serial), 0.0);
+  settings.assemblyThreads = 2;
+  EXPECT_EQ(serial, pushAndStep(mesh, tissue(10.0), settings, 8));
+  settings.assemblyThreads = 0; // all cores
+  EXPECT_EQ(serial, pushAndStep(mesh, tissue(10.0), settings, 8));
+}
+
+namespace
+{
+/// Cuts the block's hexahedra of x in (cutX - 1, cutX) and y < cutY from
+/// their neighbours across x = cutX: their corners on that plane are
+/// replaced by new nodes (a cut's node duplication, thesis 5.3.1).
+void cutBlock(CorotationalHexFem& fem, double cutX, double cutY)
+{
+  std::map<int, int> copies;
+  for (std::size_t h = 0; h < fem.hexahedronCount(); ++h)
+  {
+    Hexahedron nodes = fem.hexahedronNodes(h);
+    Vector3 centre = Vector3::Zero();
+    for (int node : nodes)
+    {
+      centre += fem.restPositions()[node] / 8.0;
+    }
+    if (!(centre.x() > cutX - 1.0 && centre.x() < cutX && centre.y() < cutY))
+    {
+      continue;
+    }
+    for (int& node : nodes)
+    {
+      if (std::abs(fem.restPositions()[node].x() - cutX) < 1e-9)
+      {
+        if (copies.count(node) == 0)
+        {
+          copies[node] = static_cast<int>(
+            fem.addNode(fem.restPositions()[node], fem.positions()[node], fem.velocities()[node]));
+        }
+        node = copies[node];
+      }
+    }
+    fem.replaceHexahedronNodes(h, nodes);
+  }
+}
+
+/// Pushes the 1,000 block, cuts it after 5 steps (a refresh under way) and
+/// steps on 12 steps.
+std::vector<Vector3> stepCutBlock(const CorotationalHexFemSettings& settings,
+  const std::function<void()>& backgroundHook = {})
+{
+  const HexahedralMesh mesh = fixedBlock(20, 10, 5);
+  CorotationalHexFem fem(mesh, tissue(10.0), settings);
+  fem.setBackgroundFactorizationHook(backgroundHook);
+  fem.setExternalForce(mesh.nodeCount() - 1, Vector3(0.0, 0.2, -0.5));
+  for (int k = 0; k < 5; ++k)
+  {
+    EXPECT_TRUE(fem.step().ok);
+  }
+  cutBlock(fem, 10.0, 6.0);
+  for (int k = 0; k < 12; ++k)
+  {
+    const SolverResult result = fem.step();
+    EXPECT_TRUE(result.ok) << result.message;
+  }
+  EXPECT_GT(fem.nodeCount(), mesh.nodeCount());
+  return fem.positions();
+}
+} // namespace
+
+TEST(SolverAtScale, ACutDuringABackgroundRefreshReplaysAndMovesAsRefactorizingEveryStep)
+{
+  // The cut changes the pattern while a refresh of the old one runs: that
+  // refresh is dropped when due (never swapped in, whatever the timing),
+  // the step of the cut does not wait for it, and the motion is the one a
+  // factorization every step gives.
+  CorotationalHexFemSettings background =
+    withSolver(LinearSolverKind::StaleFactorConjugateGradient);
+  background.backgroundRefactorizationThreshold = 0;
+  background.staleFactorIterationBudget = 2;
+  const std::vector<Vector3> prompt = stepCutBlock(background);
+  std::mt19937 random(13);
+  std::uniform_int_distribution<int> microseconds(0, 30000);
+  int delayed = 0;
+  const std::vector<Vector3> late = stepCutBlock(background,
+    [&]
+    {
+      ++delayed;
+      std::this_thread::sleep_for(std::chrono::microseconds(microseconds(random)));
+    });
+  EXPECT_GT(delayed, 1);
+  EXPECT_EQ(prompt, late);
+  const std::vector<Vector3> exact = stepCutBlock(withSolver(LinearSolverKind::Cholmod));
+  const HexahedralMesh mesh = fixedBlock(20, 10, 5);
+  double moved = 0.0;
+  for (std::size_t n = 0; n < mesh.nodeCount(); ++n)
+  {
+    moved = std::max(moved, (exact[n] - mesh.nodes[n]).norm());
+  }
+  ASSERT_GT(moved, 0.0);
+  EXPECT_LT(largestDifference(prompt, exact), 1e-6 * moved);
+}
+
 TEST(SolverAtScale, BadSettingsAreRefusedClearly)
 {
   const HexahedralMesh mesh = fixedBlock(2, 1, 1);
@@ -256,6 +366,9 @@ TEST(SolverAtScale, BadSettingsAreRefusedClearly)
   settings = {};
   settings.backgroundRefactorizationThreshold = -5;
   expectError(settings, "threshold");
+  settings = {};
+  settings.assemblyThreads = -1;
+  expectError(settings, "assembly threads");
 }
 
 TEST(SolverAtScale, TheLoadedBlasIsNamed)
