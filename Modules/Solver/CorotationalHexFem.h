@@ -142,10 +142,9 @@ struct CorotationalHexFemSettings
 /// parallel and the colours in order. Below a few hundred elements a
 /// colour holds too few elements to pay for waking threads (the thesis
 /// sizes, 42-81, stay serial). Measured (issue 20, `ThinTissueBench --suite
-/// fem`, load 12-14 on 2 cores): 1,000 block 10.8 ms per step against 12.4
-/// on one thread, 10,000 block 1.74 s against 1.41 s -- within the noise of
-/// that load, where the solves (60% of a step) dominate; to be measured on
-/// a quiet machine.
+/// fem`, 2 cores at load 2): the 1,000 block steps in 4.07 ms against 5.03
+/// on one thread; at 10,000 the solves (23 stale-factor iterations, ~60%
+/// of a step) hide it (0.46 s against 0.44 s, 10 steps).
 constexpr int ParallelAssemblyMinimumElements = 256;
 /// Colours (bits of a node's mask) of the parallel assembly; elements that
 /// need more go to one last colour assembled serially.
