@@ -207,6 +207,12 @@ void checkBinding(const VisualCollisionBinding& b)
     "one region per visual triangle");
   require(
     b.pairedVisualVertices.size() == b.collisionPositions.size(), "one pair per collision vertex");
+  require(b.creaseVisualVertices.size() == b.collisionPositions.size(),
+    "one crease entry per collision vertex");
+  for (int v : b.creaseVisualVertices)
+  {
+    require(v >= -1 && v < static_cast<int>(visualVertices), "crease vertex in range");
+  }
   require(
     b.collisionRadii.size() == b.collisionPositions.size(), "one radius per collision vertex");
   for (const Triangle& t : b.collisionTriangles)
@@ -283,6 +289,7 @@ std::string bindingCacheBytes(const VisualCollisionBinding& binding,
   payload.vector(binding.collisionTriangles);
   payload.vector(binding.collisionEdges);
   payload.vector(binding.pairedVisualVertices);
+  payload.vector(binding.creaseVisualVertices);
   // Field by field: the struct has padding, whose bytes are not content.
   payload.pod(static_cast<std::uint64_t>(binding.vertices.size()));
   for (const VisualVertexBinding& v : binding.vertices)
@@ -404,6 +411,7 @@ std::optional<BindingCacheContents> readContents(const std::string& path,
     b.collisionTriangles = r.vector<Triangle>();
     b.collisionEdges = r.vector<std::array<int, 2>>();
     b.pairedVisualVertices = r.vector<std::array<int, 2>>();
+    b.creaseVisualVertices = r.vector<int>();
     const auto vertexCount = r.pod<std::uint64_t>();
     if (vertexCount > bytes.size())
     {
@@ -456,6 +464,10 @@ std::optional<BindingCacheContents> readContents(const std::string& path,
       throw Error("trailing bytes");
     }
     checkBinding(b);
+    TriangleMesh collision;
+    collision.positions = b.collisionPositions;
+    collision.triangles = b.collisionTriangles;
+    b.collisionSides = analyseCollisionSides(collision);
     return contents;
   }
   catch (const std::exception& e)

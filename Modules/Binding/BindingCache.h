@@ -21,8 +21,9 @@
 namespace thintissue
 {
 
-/// Current file format version (2: collision radii and metadata added).
-constexpr std::uint32_t BindingCacheVersion = 3;
+/// Current file format version (2: collision radii and metadata added; 4:
+/// the crease visual vertices of a cleavage's junction).
+constexpr std::uint32_t BindingCacheVersion = 4;
 
 /// Checksum (64-bit FNV-1a) of everything the binding depends on: the
 /// visual and collision meshes (positions, triangles, texture corners and

@@ -146,6 +146,12 @@ constexpr double EdgePointMargin = 0.1;
 
 /// One collision vertex's wish for a visual vertex on one side (slot 0: +,
 /// slot 1: -), candidates best first.
+/// Paired visual vertices per collision vertex: positive, negative, and
+/// the crease's at a junction vertex.
+constexpr std::size_t PairedSlots = 3;
+constexpr int CreaseSlot = 2;
+using PairedPoints = std::array<SurfacePoint, PairedSlots>;
+
 struct PairingClaim
 {
   int collisionVertex = -1;
@@ -234,6 +240,47 @@ int VisualCollisionBinding::collisionEdgeIndex(int a, int b) const
                                                   : -1;
 }
 
+int VisualCollisionBinding::pairedVisualVertex(int v, int t, int side) const
+{
+  // Without side classes (a binding read from arrays that predate them)
+  // every vertex has two sides.
+  const int slot =
+    collisionSides.junctionVertex.empty() ? sideSlot(side) : collisionSides.pairedSlot(v, t, side);
+  return slot == 2 ? creaseVisualVertices[v] : pairedVisualVertices[v][slot];
+}
+
+std::vector<std::array<std::array<int, 2>, 3>> VisualCollisionBinding::pathEnds() const
+{
+  std::vector<int> triangleCount(collisionEdges.size(), 0);
+  for (const Triangle& t : collisionTriangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++triangleCount[collisionEdgeIndex(t[k], t[(k + 1) % 3])];
+    }
+  }
+  std::vector<std::array<std::array<int, 2>, 3>> ends(
+    collisionEdges.size(), { { { { -1, -1 } }, { { -1, -1 } }, { { -1, -1 } } } });
+  for (std::size_t t = 0; t < collisionTriangles.size(); ++t)
+  {
+    const auto triangle = static_cast<int>(t);
+    for (int k = 0; k < 3; ++k)
+    {
+      const int e =
+        collisionEdgeIndex(collisionTriangles[t][k], collisionTriangles[t][(k + 1) % 3]);
+      for (int side : { 1, -1 })
+      {
+        const int label = collisionSides.halves.empty()
+                            ? (triangleCount[e] == 1 ? 0 : side)
+                            : collisionSides.pathSide(triangle, side, triangleCount[e]);
+        ends[e][label + 1] = { { pairedVisualVertex(collisionEdges[e][0], triangle, side),
+          pairedVisualVertex(collisionEdges[e][1], triangle, side) } };
+      }
+    }
+  }
+  return ends;
+}
+
 //------------------------------------------------------------------------------
 namespace
 {
@@ -243,43 +290,41 @@ struct CollisionTopology
 {
   std::vector<std::array<int, 2>> edges; // sorted (lower, higher)
   std::vector<int> edgeTriangleCount;
+  std::vector<std::array<int, 3>> edgeTriangles; // -1 beyond the count
   std::vector<char> borderVertex;
   std::vector<Vector3> vertexNormals; // unit, area-weighted
+  CollisionSides sides;
 };
 
 CollisionTopology analyseCollision(const TriangleMesh& collision)
 {
   CollisionTopology topology;
-  std::unordered_map<std::uint64_t, int> triangleCount;
-  for (const Triangle& t : collision.triangles)
+  topology.sides = analyseCollisionSides(collision); // at most three triangles an edge
+  std::unordered_map<std::uint64_t, std::array<int, 3>> trianglesOfEdge;
+  for (std::size_t t = 0; t < collision.triangleCount(); ++t)
   {
     for (int k = 0; k < 3; ++k)
     {
-      ++triangleCount[edgeKey(t[k], t[(k + 1) % 3])];
+      const Triangle& tri = collision.triangles[t];
+      auto [it, inserted] = trianglesOfEdge.try_emplace(
+        edgeKey(tri[k], tri[(k + 1) % 3]), std::array<int, 3>{ { -1, -1, -1 } });
+      *std::find(it->second.begin(), it->second.end(), -1) = static_cast<int>(t);
     }
   }
-  for (const auto& [key, count] : triangleCount)
+  for (const auto& entry : trianglesOfEdge)
   {
-    if (count > 2)
-    {
-      throw InvalidInputError(nameOf(collision, "collision") + ": edge (" +
-                              std::to_string(key >> 32) + ", " + std::to_string(key & 0xffffffffu) +
-                              ") has " + std::to_string(count) + " triangles (non-manifold)");
-    }
+    const std::uint64_t key = entry.first;
     topology.edges.push_back(
       { { static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu) } });
   }
   std::sort(topology.edges.begin(), topology.edges.end());
-  topology.borderVertex.assign(collision.vertexCount(), 0);
+  topology.borderVertex = topology.sides.borderVertex;
   for (const auto& e : topology.edges)
   {
-    const int count = triangleCount[edgeKey(e[0], e[1])];
-    topology.edgeTriangleCount.push_back(count);
-    if (count == 1)
-    {
-      topology.borderVertex[e[0]] = 1;
-      topology.borderVertex[e[1]] = 1;
-    }
+    const std::array<int, 3>& triangles = trianglesOfEdge[edgeKey(e[0], e[1])];
+    topology.edgeTriangles.push_back(triangles);
+    topology.edgeTriangleCount.push_back(static_cast<int>(
+      std::count_if(triangles.begin(), triangles.end(), [](int t) { return t >= 0; })));
   }
   topology.vertexNormals.assign(collision.vertexCount(), Vector3::Zero());
   for (const Triangle& t : collision.triangles)
@@ -546,6 +591,46 @@ std::vector<Vector3> outwardDirections(const TriangleMesh& collision,
   return outward;
 }
 
+/// Direction from each junction vertex into the cleft between its leaves:
+/// across its junction edges, toward the two leaves (whose triangles leave
+/// the edge above and below the cleft: between them lies its crease), in
+/// their planes.
+std::vector<Vector3> creaseDirections(const TriangleMesh& collision,
+  const CollisionTopology& topology)
+{
+  std::vector<Vector3> intoCleft(collision.vertexCount(), Vector3::Zero());
+  for (std::size_t e = 0; e < topology.edges.size(); ++e)
+  {
+    if (topology.edgeTriangleCount[e] != 3)
+    {
+      continue;
+    }
+    for (int t : topology.edgeTriangles[e])
+    {
+      const auto& halves = topology.sides.halves[t];
+      if (halves[0] != SurfaceHalf::Cleft && halves[1] != SurfaceHalf::Cleft)
+      {
+        continue; // the body
+      }
+      const auto& edge = topology.edges[e];
+      const Vector3& a = collision.positions[edge[0]];
+      const Vector3 along = (collision.positions[edge[1]] - a).normalized();
+      int apex = -1;
+      for (int c : collision.triangles[t])
+      {
+        apex = c != edge[0] && c != edge[1] ? c : apex;
+      }
+      Vector3 towardLeaf = collision.positions[apex] - a;
+      towardLeaf -= towardLeaf.dot(along) * along;
+      for (int v : edge)
+      {
+        intoCleft[v] += towardLeaf.normalized();
+      }
+    }
+  }
+  return intoCleft;
+}
+
 /// Per collision vertex: how far from where its normal meets the surface
 /// a paired visual vertex may lie (beyond, a point inside a visual edge
 /// there is a candidate too).
@@ -592,7 +677,7 @@ std::vector<double> halfMeanEdgeLengths(const TriangleMesh& collision,
 
 /// The claims resolved: no visual vertex serves two collision vertices, the
 /// closest claims choose first and the others take their next candidate.
-std::vector<std::array<SurfacePoint, 2>> resolveClaims(const TriangleMesh& visual,
+std::vector<PairedPoints> resolveClaims(const TriangleMesh& visual,
   const TriangleMesh& collision,
   const CollisionTopology& topology,
   const std::vector<PairingClaim>& claims)
@@ -618,8 +703,8 @@ std::vector<std::array<SurfacePoint, 2>> resolveClaims(const TriangleMesh& visua
   // Edge points taken, per edge: parameters (another point on the edge
   // must keep EdgePointMargin away, or the two would merge).
   std::unordered_map<std::uint64_t, std::vector<double>> takenOnEdge;
-  std::vector<std::array<SurfacePoint, 2>> paired(n);
-  std::vector<std::array<char, 2>> found(n, { { 0, 0 } });
+  std::vector<PairedPoints> paired(n);
+  std::vector<std::array<char, PairedSlots>> found(n, { { 0, 0, 0 } });
   for (std::size_t c : order)
   {
     const PairingClaim& claim = claims[c];
@@ -654,9 +739,10 @@ std::vector<std::array<SurfacePoint, 2>> resolveClaims(const TriangleMesh& visua
       throw InvalidInputError(
         "collision vertex " + std::to_string(claim.collisionVertex) + " of " +
         nameOf(collision, "collision") + " finds no free visual vertex on its " +
-        (topology.borderVertex[claim.collisionVertex]
-            ? "rim"
-            : (claim.slot == 0 ? "positive side" : "negative side")) +
+        (claim.slot == CreaseSlot ? "cleft's crease"
+                                  : (topology.borderVertex[claim.collisionVertex]
+                                        ? "rim"
+                                        : (claim.slot == 0 ? "positive side" : "negative side"))) +
         ": its neighbours took them all (the visual mesh is too coarse there)");
     }
   }
@@ -666,6 +752,10 @@ std::vector<std::array<SurfacePoint, 2>> resolveClaims(const TriangleMesh& visua
     {
       paired[v][1] = paired[v][0];
     }
+    if (!topology.sides.junctionVertex[v])
+    {
+      paired[v][CreaseSlot] = paired[v][0];
+    }
   }
   return paired;
 }
@@ -673,7 +763,7 @@ std::vector<std::array<SurfacePoint, 2>> resolveClaims(const TriangleMesh& visua
 /// 5.2.1: the visual point of every collision vertex and side: a visual
 /// vertex, or for a border collision vertex possibly a point inside a
 /// visual edge (inserted as a vertex before the paths are computed).
-std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMesh& visual,
+std::vector<PairedPoints> pairCollisionVertices(const TriangleMesh& visual,
   const TriangleMeshAdjacency& visualAdjacency,
   const TriangleBvh& visualBvh,
   const TriangleMesh& collision,
@@ -683,16 +773,17 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
 {
   const std::size_t n = collision.vertexCount();
   const std::vector<Vector3> outward = outwardDirections(collision, topology);
+  const std::vector<Vector3> intoCleft = creaseDirections(collision, topology);
   const std::vector<double> snapDistance = snapDistances(collision, topology);
   const std::vector<double> halfMeanEdge = halfMeanEdgeLengths(collision, topology);
-  std::vector<PairingClaim> claims(2 * n);
-  std::vector<std::string> errors(2 * n);
+  std::vector<PairingClaim> claims(PairedSlots * n);
+  std::vector<std::string> errors(PairedSlots * n);
   tbb::parallel_for(std::size_t(0),
-    2 * n,
+    PairedSlots * n,
     [&](std::size_t c)
     {
-      const auto v = static_cast<int>(c / 2);
-      const int slot = static_cast<int>(c % 2);
+      const auto v = static_cast<int>(c / PairedSlots);
+      const int slot = static_cast<int>(c % PairedSlots);
       PairingClaim& claim = claims[c];
       claim.collisionVertex = v;
       claim.slot = slot;
@@ -707,6 +798,27 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
       // thinness factor: radii far too small are still refused.
       const double thinReach = settings.thinnessFactor * radii[v];
       const double reach = std::max(thinReach, std::min(halfMeanEdge[v], 2.0 * thinReach));
+      if (slot == CreaseSlot)
+      {
+        if (topology.sides.junctionVertex[v])
+        {
+          // The cleft ends at the junction vertex: the visual vertices
+          // nearest to it lie on the cleft's walls (the top and the
+          // bottom are a radius away). No ray: one along the leaves can
+          // run along the cleft's gap and out of its mouth.
+          errors[c] = claimRimPoint(visual,
+            visualAdjacency,
+            visualBvh,
+            v,
+            origin,
+            Vector3::Zero(),
+            reach,
+            radii[v],
+            settings.thinnessFactor,
+            claim);
+        }
+        return;
+      }
       if (topology.borderVertex[v])
       {
         if (slot == 1)
@@ -725,13 +837,19 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
           claim);
         return;
       }
+      // A junction vertex sits on the cleft's end: its normal runs along
+      // the end's wall and could meet the cleft instead of the top or the
+      // bottom. Its rays start a quarter radius back into the body.
+      const Vector3 rayOrigin = topology.sides.junctionVertex[v]
+                                  ? Vector3(origin - 0.25 * radii[v] * intoCleft[v].normalized())
+                                  : origin;
       const Vector3 direction = (slot == 0 ? 1.0 : -1.0) * topology.vertexNormals[v];
       // Within reach through the tree; the whole surface only to word the
       // error when nothing is.
-      auto [distance, triangle] = nearestRayHit(visual, origin, direction, &visualBvh, reach);
+      auto [distance, triangle] = nearestRayHit(visual, rayOrigin, direction, &visualBvh, reach);
       if (triangle < 0)
       {
-        std::tie(distance, triangle) = nearestRayHit(visual, origin, direction);
+        std::tie(distance, triangle) = nearestRayHit(visual, rayOrigin, direction);
       }
       if (triangle < 0)
       {
@@ -756,9 +874,9 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
       for (int w : nearby)
       {
         // Only vertices on this side of the collision vertex.
-        if ((visual.positions[w] - origin).dot(direction) > 0.0)
+        if ((visual.positions[w] - rayOrigin).dot(direction) > 0.0)
         {
-          onSide.emplace_back(distanceToLine(visual.positions[w], origin, direction), w);
+          onSide.emplace_back(distanceToLine(visual.positions[w], rayOrigin, direction), w);
         }
       }
       std::sort(onSide.begin(), onSide.end());
@@ -775,7 +893,7 @@ std::vector<std::array<SurfacePoint, 2>> pairCollisionVertices(const TriangleMes
         addEdgePointCandidates(visual,
           visualAdjacency,
           { hit[0], hit[1], hit[2] },
-          origin + distance * direction,
+          rayOrigin + distance * direction,
           claim);
         std::stable_sort(claim.candidates.begin(),
           claim.candidates.end(),
@@ -927,26 +1045,75 @@ private:
 };
 
 /// A geodesic path wanted for collision edge `edge` on side `side` (0: the
-/// rim path of a border edge) between two visual vertices.
+/// rim path of a border edge, or a junction's crease path) between two
+/// visual vertices.
 struct PathRequest
 {
   int edge;
   int side;
-  int source;
-  int target;
+  int source = -1;
+  int target = -1;
   /// An inner edge joining two border vertices: both ends on the rim.
   bool chord = false;
+  /// The half of the visual surface an inner path stays on.
+  SurfaceHalf half = SurfaceHalf::Positive;
 };
 
-/// Where the side paths may run: each side's half of the visual surface
-/// (split by the rim paths), and each half without the triangles touching
-/// the rim paths (its core).
+/// Index of a half in SideRegions (positive, negative, a cleft's).
+int halfIndex(SurfaceHalf half)
+{
+  return half == SurfaceHalf::Positive ? 0 : (half == SurfaceHalf::Negative ? 1 : 2);
+}
+
+/// The ends of request r and the half it stays on: the visual vertices
+/// that a triangle side of its wedge sees at the edge's two vertices.
+void setRequestEnds(const VisualCollisionBinding& binding,
+  const CollisionTopology& topology,
+  PathRequest& r)
+{
+  const auto& edge = topology.edges[r.edge];
+  const int count = topology.edgeTriangleCount[r.edge];
+  for (int t : topology.edgeTriangles[r.edge])
+  {
+    for (int side : { 1, -1 })
+    {
+      if (t >= 0 && topology.sides.pathSide(t, side, count) == r.side)
+      {
+        r.source = binding.pairedVisualVertex(edge[0], t, side);
+        r.target = binding.pairedVisualVertex(edge[1], t, side);
+        r.half = topology.sides.halves[t][sideSlot(side)];
+        return;
+      }
+    }
+  }
+}
+
+/// The paired visual vertices into the binding: the positive and negative
+/// ones of every vertex, the crease's of the junction vertices.
+void setPairedVisualVertices(VisualCollisionBinding& binding,
+  const std::vector<std::array<int, PairedSlots>>& indices)
+{
+  binding.pairedVisualVertices.resize(indices.size());
+  binding.creaseVisualVertices.assign(indices.size(), -1);
+  for (std::size_t v = 0; v < indices.size(); ++v)
+  {
+    binding.pairedVisualVertices[v] = { { indices[v][0], indices[v][1] } };
+    if (binding.collisionSides.junctionVertex[v])
+    {
+      binding.creaseVisualVertices[v] = indices[v][CreaseSlot];
+    }
+  }
+}
+
+/// Where the side paths may run: each half of the visual surface (split by
+/// the rim paths: positive, negative, and the clefts'), and each half
+/// without the triangles touching the rim paths (its core).
 struct SideRegions
 {
   const TriangleMeshAdjacency* adjacency = nullptr;
   std::vector<char> onRim; ///< per vertex: on a rim path
-  std::array<std::vector<char>, 2> halves;
-  std::array<std::vector<char>, 2> cores;
+  std::array<std::vector<char>, 3> halves;
+  std::array<std::vector<char>, 3> cores;
 };
 
 /// The + and - halves of the rim-meshed surface for the inner paths, and
@@ -966,14 +1133,15 @@ SideRegions sideRegions(const RemeshedSurface& rimmed,
       onRim[v] = 1;
     }
   }
-  for (int slot = 0; slot < 2; ++slot)
+  for (SurfaceHalf which : { SurfaceHalf::Positive, SurfaceHalf::Negative, SurfaceHalf::Cleft })
   {
+    const int slot = halfIndex(which);
     regions.halves[slot].resize(half.size());
     regions.cores[slot].resize(half.size());
     for (std::size_t t = 0; t < half.size(); ++t)
     {
       const Triangle& tri = rimmed.mesh.triangles[t];
-      regions.halves[slot][t] = half[t] == (slot == 0 ? 1 : -1) ? 1 : 0;
+      regions.halves[slot][t] = half[t] == static_cast<std::int8_t>(which) ? 1 : 0;
       regions.cores[slot][t] =
         regions.halves[slot][t] && !onRim[tri[0]] && !onRim[tri[1]] && !onRim[tri[2]] ? 1 : 0;
     }
@@ -983,9 +1151,8 @@ SideRegions sideRegions(const RemeshedSurface& rimmed,
 
 /// The requested paths, in parallel or not (same result), in blocks so that
 /// progress (and abort) is reported from this thread between `from` and
-/// `to`. With `halves`, a path of side +1 stays on halves[0], of side -1 on
-/// halves[1]. `detours`: per path, the vertices of the geodesic it was
-/// re-routed around (a chord moved off the rim paths), else 0.
+/// `to`. With `regions`, an inner path stays on its half. `detours`: per path, the vertices of the
+/// geodesic it was re-routed around (a chord moved off the rim paths), else 0.
 std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
   const std::vector<PathRequest>& requests,
   const SideRegions* regions,
@@ -1000,12 +1167,12 @@ std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
   auto computePath = [&](std::size_t k)
   {
     const PathRequest& r = requests[k];
-    if (regions == nullptr || r.side == 0)
+    if (regions == nullptr)
     {
       paths[k] = finder.shortestPath(r.source, r.target);
       return;
     }
-    const int slot = r.side > 0 ? 0 : 1;
+    const int slot = halfIndex(r.half);
     paths[k] = finder.shortestPathWithin(r.source, r.target, regions->halves[slot]);
     // Between two rim points the shortest path on the half may run all
     // along the rim paths (a thin corner triangle: around the corner is
@@ -1072,22 +1239,16 @@ std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
   return paths;
 }
 
-/// The side (+1 / -1) of every triangle of the visual surface cut along the
-/// rim paths: each piece the rim paths bound (flood fill) takes the side of
-/// the collision vertices' paired visual vertices in it; a piece without
-/// any (a collision mesh with no inner vertex) the side its surface lies on,
-/// measured from the nearest collision vertex along its normal. A piece
-/// holding vertices of both sides means the rim paths do not separate the
-/// two sides: InvalidInputError.
-std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
+/// The pieces of the visual surface that the rim paths bound (flood fill):
+/// per triangle its piece; `onRim` marks the rim paths' vertices.
+std::vector<int> piecesBetweenRimPaths(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   const std::vector<std::vector<int>>& rimPaths,
-  const TriangleMesh& collision,
-  const std::vector<std::array<int, 2>>& paired,
-  const CollisionTopology& topology)
+  std::vector<char>& onRim,
+  int& pieces)
 {
   std::vector<char> barrier(adjacency.edgeCount(), 0);
-  std::vector<char> onRim(mesh.vertexCount(), 0);
+  onRim.assign(mesh.vertexCount(), 0);
   for (const std::vector<int>& path : rimPaths)
   {
     for (std::size_t i = 0; i < path.size(); ++i)
@@ -1100,7 +1261,7 @@ std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
     }
   }
   std::vector<int> piece(mesh.triangleCount(), -1);
-  int pieces = 0;
+  pieces = 0;
   std::vector<int> stack;
   for (std::size_t seed = 0; seed < mesh.triangleCount(); ++seed)
   {
@@ -1126,106 +1287,203 @@ std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
     }
     ++pieces;
   }
-  // Votes of the paired visual vertices of inner collision vertices.
-  std::vector<std::array<int, 2>> votes(static_cast<std::size_t>(pieces), { { 0, 0 } });
-  std::vector<int> firstVoter(2 * static_cast<std::size_t>(pieces), -1);
-  for (std::size_t c = 0; c < paired.size(); ++c)
+  return piece;
+}
+
+/// Per collision vertex and paired slot: the half its visual vertex lies on
+/// (a leaf's negative side faces its cleft, not the negative half).
+std::vector<std::array<SurfaceHalf, PairedSlots>> pairedHalves(const TriangleMesh& collision,
+  const CollisionTopology& topology)
+{
+  std::vector<std::array<SurfaceHalf, PairedSlots>> halves(collision.vertexCount(),
+    { { SurfaceHalf::Positive, SurfaceHalf::Negative, SurfaceHalf::Cleft } });
+  for (std::size_t t = 0; t < collision.triangleCount(); ++t)
+  {
+    for (int v : collision.triangles[t])
+    {
+      for (int side : { 1, -1 })
+      {
+        halves[v][topology.sides.pairedSlot(v, static_cast<int>(t), side)] =
+          topology.sides.halves[t][sideSlot(side)];
+      }
+    }
+  }
+  return halves;
+}
+
+/// Votes per piece of the paired visual vertices of inner collision
+/// vertices for the half they lie on (positive, negative, a cleft's), and
+/// the first voter of each.
+struct HalfVotes
+{
+  std::vector<std::array<int, 3>> votes;
+  std::vector<std::array<int, 3>> firstVoter;
+};
+
+HalfVotes votesForHalves(const VisualCollisionBinding& binding,
+  const TriangleMesh& collision,
+  const CollisionTopology& topology,
+  const TriangleMeshAdjacency& adjacency,
+  const std::vector<int>& piece,
+  const std::vector<char>& onRim,
+  int pieces)
+{
+  const std::vector<std::array<SurfaceHalf, PairedSlots>> halves =
+    pairedHalves(collision, topology);
+  HalfVotes result;
+  result.votes.assign(static_cast<std::size_t>(pieces), { { 0, 0, 0 } });
+  result.firstVoter.assign(static_cast<std::size_t>(pieces), { { -1, -1, -1 } });
+  for (std::size_t c = 0; c < collision.vertexCount(); ++c)
   {
     if (topology.borderVertex[c])
     {
       continue;
     }
-    for (int slot = 0; slot < 2; ++slot)
+    for (int slot = 0; slot < static_cast<int>(PairedSlots); ++slot)
     {
-      const int v = paired[c][slot];
-      if (onRim[v])
+      const int v = slot == CreaseSlot ? binding.creaseVisualVertices[c]
+                                       : binding.pairedVisualVertices[c][slot];
+      if (v < 0 || onRim[v])
       {
         continue;
       }
       const int p = piece[*adjacency.vertexTrianglesBegin(v)];
-      ++votes[p][slot];
-      firstVoter[2 * p + slot] =
-        firstVoter[2 * p + slot] < 0 ? static_cast<int>(c) : firstVoter[2 * p + slot];
+      const int h = halfIndex(halves[c][slot]);
+      ++result.votes[p][h];
+      int& first = result.firstVoter[p][h];
+      first = first < 0 ? static_cast<int>(c) : first;
     }
   }
-  std::vector<std::int8_t> sideOfPiece(static_cast<std::size_t>(pieces), 0);
+  return result;
+}
+
+/// The side a piece with no paired vertex lies on (a collision mesh with no
+/// inner vertex), measured from the nearest collision vertex along its
+/// normal, sampled (every piece at least once; about 8192 triangles in all).
+std::vector<double> pieceOffsets(const TriangleMesh& mesh,
+  const TriangleMesh& collision,
+  const CollisionTopology& topology,
+  const std::vector<int>& piece,
+  const std::vector<char>& decided,
+  int pieces)
+{
   std::vector<double> offset(static_cast<std::size_t>(pieces), 0.0);
+  const std::size_t stride = std::max<std::size_t>(1, mesh.triangleCount() / 8192);
+  std::vector<char> sampled(static_cast<std::size_t>(pieces), 0);
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    const int p = piece[t];
+    if (decided[p] || (t % stride != 0 && sampled[p]))
+    {
+      continue;
+    }
+    sampled[p] = 1;
+    const Triangle& tri = mesh.triangles[t];
+    const Vector3 centre =
+      (mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]) / 3.0;
+    double best = Infinity;
+    int nearest = 0;
+    for (std::size_t c = 0; c < collision.vertexCount(); ++c)
+    {
+      const double d = (collision.positions[c] - centre).squaredNorm();
+      if (d < best)
+      {
+        best = d;
+        nearest = static_cast<int>(c);
+      }
+    }
+    offset[p] += mesh.triangleArea(t) *
+                 (centre - collision.positions[nearest]).dot(topology.vertexNormals[nearest]);
+  }
+  return offset;
+}
+
+/// The half (SurfaceHalf: +1, -1, 0 for a cleft) of every triangle of the
+/// visual surface cut along the rim paths: each piece the rim paths bound
+/// takes the half of the collision vertices' paired visual vertices in it;
+/// a piece without any the side its surface lies on (pieceOffsets). A
+/// piece holding vertices of two halves means the rim paths do not
+/// separate them: InvalidInputError.
+std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency,
+  const std::vector<std::vector<int>>& rimPaths,
+  const TriangleMesh& collision,
+  const VisualCollisionBinding& binding,
+  const CollisionTopology& topology)
+{
+  std::vector<char> onRim;
+  int pieces = 0;
+  const std::vector<int> piece = piecesBetweenRimPaths(mesh, adjacency, rimPaths, onRim, pieces);
+  const HalfVotes votes =
+    votesForHalves(binding, collision, topology, adjacency, piece, onRim, pieces);
+  constexpr std::array<SurfaceHalf, 3> HalfOfIndex{
+    { SurfaceHalf::Positive, SurfaceHalf::Negative, SurfaceHalf::Cleft }
+  };
+  constexpr std::array<const char*, 3> HalfName{ { "positive", "negative", "cleft's" } };
+  std::vector<std::int8_t> halfOfPiece(static_cast<std::size_t>(pieces), 0);
+  std::vector<char> decided(static_cast<std::size_t>(pieces), 0);
   bool needOffsets = false;
   for (int p = 0; p < pieces; ++p)
   {
-    if (votes[p][0] > 0 && votes[p][1] > 0)
+    int chosen = -1;
+    for (int h = 0; h < 3; ++h)
     {
-      throw InvalidInputError("collision mesh '" + collision.name + "': collision vertex " +
-                              std::to_string(firstVoter[2 * p]) +
-                              " finds its positive visual vertex, and collision vertex " +
-                              std::to_string(firstVoter[2 * p + 1]) +
-                              " its negative one, on one piece of the visual surface between "
-                              "the rim paths (" +
-                              std::to_string(votes[p][0]) + " positive and " +
-                              std::to_string(votes[p][1]) +
-                              " negative ones there; the collision normals are not consistent, the "
-                              "border does not run around the visual rim, or tunnels through "
-                              "the tissue join its sides: the visual surface has genus " +
-                              std::to_string(adjacency.closedSurfaceGenus()) + ")");
-    }
-    sideOfPiece[p] = votes[p][0] > 0 ? 1 : (votes[p][1] > 0 ? -1 : 0);
-    needOffsets = needOffsets || sideOfPiece[p] == 0;
-  }
-  if (needOffsets)
-  {
-    // Sampled (every piece at least once): about 8192 triangles in all.
-    const std::size_t stride = std::max<std::size_t>(1, mesh.triangleCount() / 8192);
-    std::vector<char> sampled(static_cast<std::size_t>(pieces), 0);
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-    {
-      const int p = piece[t];
-      if (sideOfPiece[p] != 0 || (t % stride != 0 && sampled[p]))
+      if (votes.votes[p][h] == 0)
       {
         continue;
       }
-      sampled[p] = 1;
-      const Triangle& tri = mesh.triangles[t];
-      const Vector3 centre =
-        (mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]) / 3.0;
-      double best = Infinity;
-      int nearest = 0;
-      for (std::size_t c = 0; c < collision.vertexCount(); ++c)
+      if (chosen >= 0)
       {
-        const double d = (collision.positions[c] - centre).squaredNorm();
-        if (d < best)
-        {
-          best = d;
-          nearest = static_cast<int>(c);
-        }
+        throw InvalidInputError("collision mesh '" + collision.name + "': collision vertex " +
+                                std::to_string(votes.firstVoter[p][chosen]) + " finds its " +
+                                HalfName[chosen] + " visual vertex, and collision vertex " +
+                                std::to_string(votes.firstVoter[p][h]) + " its " + HalfName[h] +
+                                " one, on one piece of the visual surface between the rim paths (" +
+                                std::to_string(votes.votes[p][chosen]) + " " + HalfName[chosen] +
+                                " and " + std::to_string(votes.votes[p][h]) + " " + HalfName[h] +
+                                " ones there; the collision normals are not consistent, the "
+                                "border does not run around the visual rim, or tunnels through "
+                                "the tissue join its sides: the visual surface has genus " +
+                                std::to_string(adjacency.closedSurfaceGenus()) + ")");
       }
-      offset[p] += mesh.triangleArea(t) *
-                   (centre - collision.positions[nearest]).dot(topology.vertexNormals[nearest]);
+      chosen = h;
     }
+    decided[p] = chosen >= 0 ? 1 : 0;
+    halfOfPiece[p] = chosen >= 0 ? static_cast<std::int8_t>(HalfOfIndex[chosen]) : 0;
+    needOffsets = needOffsets || chosen < 0;
+  }
+  if (needOffsets)
+  {
+    const std::vector<double> offset =
+      pieceOffsets(mesh, collision, topology, piece, decided, pieces);
     for (int p = 0; p < pieces; ++p)
     {
-      if (sideOfPiece[p] == 0)
+      if (!decided[p])
       {
-        sideOfPiece[p] = offset[p] >= 0.0 ? 1 : -1;
+        halfOfPiece[p] = offset[p] >= 0.0 ? 1 : -1;
       }
     }
   }
-  std::vector<std::int8_t> side(mesh.triangleCount());
-  for (std::size_t t = 0; t < side.size(); ++t)
+  std::vector<std::int8_t> half(mesh.triangleCount());
+  for (std::size_t t = 0; t < half.size(); ++t)
   {
-    side[t] = sideOfPiece[piece[t]];
+    half[t] = halfOfPiece[piece[t]];
   }
-  return side;
+  return half;
 }
 
-/// The path of each collision edge and side (a border edge's one path,
-/// side 0, serves both sides).
+/// The path of each collision edge and side label (a border edge's one
+/// path, side 0, serves both sides; a junction's crease path the two
+/// leaves' sides facing the cleft).
 struct PathsOfEdges
 {
-  std::vector<std::array<int, 3>> byEdge; ///< path index per side + 1
-  int operator()(int edge, int side) const
+  const CollisionTopology* topology = nullptr;
+  std::vector<std::array<int, 3>> byEdge; ///< path index per side label + 1
+  /// The path bounding side `side` of collision triangle t along `edge`.
+  int operator()(int edge, int t, int side) const
   {
-    const auto& candidates = byEdge[edge];
-    return candidates[1] >= 0 ? candidates[1] : candidates[side + 1];
+    const int label = topology->sides.pathSide(t, side, topology->edgeTriangleCount[edge]);
+    return byEdge[edge][label + 1];
   }
 };
 
@@ -1287,7 +1545,7 @@ std::vector<std::vector<int>> floodRegions(VisualCollisionBinding& binding,
         const int a = ct[k];
         const int b = ct[(k + 1) % 3];
         const int edge = binding.collisionEdgeIndex(a, b);
-        const BindingPath& path = binding.paths[pathFor(edge, side)];
+        const BindingPath& path = binding.paths[pathFor(edge, static_cast<int>(t), side)];
         const bool forward = topology.edges[edge][0] == a;
         // A segment of this path that no other path uses.
         int seed = -1;
@@ -1392,14 +1650,22 @@ std::vector<std::vector<double>> bindVisualVertices(VisualCollisionBinding& bind
   for (std::size_t v = 0; v < binding.pairedVisualVertices.size(); ++v)
   {
     const auto& pair = binding.pairedVisualVertices[v];
-    for (int slot = 0; slot < 2; ++slot)
+    // The crease's vertex lies between two sides, like a rim vertex.
+    const std::array<std::pair<int, int>, 3> sides{ { { pair[0], pair[0] == pair[1] ? 0 : 1 },
+      { pair[1], pair[0] == pair[1] ? 0 : -1 },
+      { binding.creaseVisualVertices[v], 0 } } };
+    for (const auto& [visualVertex, side] : sides)
     {
-      VisualVertexBinding& b = binding.vertices[pair[slot]];
+      if (visualVertex < 0)
+      {
+        continue;
+      }
+      VisualVertexBinding& b = binding.vertices[visualVertex];
       b.kind = BindingKind::CollisionVertex;
       b.element = static_cast<int>(v);
-      b.side = pair[0] == pair[1] ? 0 : (slot == 0 ? 1 : -1);
+      b.side = side;
       b.parameters = Vector3(1.0, 0.0, 0.0);
-      assigned[pair[slot]] = 1;
+      assigned[visualVertex] = 1;
     }
   }
   // Accumulated length along each path (fraction from the edge's first vertex).
@@ -1449,23 +1715,40 @@ std::vector<std::vector<double>> bindVisualVertices(VisualCollisionBinding& bind
   return pathFractions;
 }
 
+bool samePoint(const SurfacePoint& x, const SurfacePoint& y)
+{
+  return x.isVertex() ? y.isVertex() && x.vertex == y.vertex
+                      : !y.isVertex() && x.edgeStart == y.edgeStart && x.edgeEnd == y.edgeEnd &&
+                          x.edgeParameter == y.edgeParameter;
+}
+
+/// The first slot of `points` before `slot` holding the same point, or -1
+/// (a rim vertex's slots all hold one point).
+int earlierSlotOf(const PairedPoints& points, int slot)
+{
+  for (int earlier = 0; earlier < slot; ++earlier)
+  {
+    if (samePoint(points[earlier], points[slot]))
+    {
+      return earlier;
+    }
+  }
+  return -1;
+}
+
 /// The paired points inside visual edges, each as a one-point path (to
-/// become vertices first; the two sides of a rim vertex share one).
-std::vector<SurfacePath> pairedEdgePointPaths(
-  const std::vector<std::array<SurfacePoint, 2>>& pairedPoints)
+/// become vertices first; the sides of a rim vertex share one).
+std::vector<SurfacePath> pairedEdgePointPaths(const std::vector<PairedPoints>& pairedPoints)
 {
   std::vector<SurfacePath> pairedEdgePoints;
-  for (const auto& pair : pairedPoints)
+  for (const PairedPoints& points : pairedPoints)
   {
-    for (int slot = 0; slot < 2; ++slot)
+    for (int slot = 0; slot < static_cast<int>(PairedSlots); ++slot)
     {
-      if (!pair[slot].isVertex() &&
-          (slot == 0 ||
-            !(pair[1].edgeStart == pair[0].edgeStart && pair[1].edgeEnd == pair[0].edgeEnd &&
-              pair[1].edgeParameter == pair[0].edgeParameter)))
+      if (!points[slot].isVertex() && earlierSlotOf(points, slot) < 0)
       {
         SurfacePath single;
-        single.points.push_back(pair[slot]);
+        single.points.push_back(points[slot]);
         pairedEdgePoints.push_back(std::move(single));
       }
     }
@@ -1475,27 +1758,25 @@ std::vector<SurfacePath> pairedEdgePointPaths(
 
 /// The visual vertex of each paired point: its own vertex, or the one its
 /// edge point became (`paired`: the one-point paths inserted, in order).
-std::vector<std::array<int, 2>> pairedVertexIndices(
-  const std::vector<std::array<SurfacePoint, 2>>& pairedPoints,
+std::vector<std::array<int, PairedSlots>> pairedVertexIndices(
+  const std::vector<PairedPoints>& pairedPoints,
   const RemeshedSurface& paired)
 {
-  std::vector<std::array<int, 2>> indices(pairedPoints.size(), { { -1, -1 } });
+  std::vector<std::array<int, PairedSlots>> indices(pairedPoints.size(), { { -1, -1, -1 } });
   std::size_t next = 0;
   for (std::size_t v = 0; v < pairedPoints.size(); ++v)
   {
-    for (int slot = 0; slot < 2; ++slot)
+    for (int slot = 0; slot < static_cast<int>(PairedSlots); ++slot)
     {
       const SurfacePoint& point = pairedPoints[v][slot];
+      const int earlier = earlierSlotOf(pairedPoints[v], slot);
       if (point.isVertex())
       {
         indices[v][slot] = point.vertex;
       }
-      else if (slot == 1 && indices[v][0] >= 0 && !pairedPoints[v][0].isVertex() &&
-               pairedPoints[v][0].edgeStart == point.edgeStart &&
-               pairedPoints[v][0].edgeEnd == point.edgeEnd &&
-               pairedPoints[v][0].edgeParameter == point.edgeParameter)
+      else if (earlier >= 0)
       {
-        indices[v][1] = indices[v][0];
+        indices[v][slot] = indices[v][earlier];
       }
       else
       {
@@ -1565,7 +1846,7 @@ void parameteriseRegions(VisualCollisionBinding& binding,
         const int a = ct[k];
         const int b = ct[(k + 1) % 3];
         const int edge = binding.collisionEdgeIndex(a, b);
-        const int p = pathFor(edge, side);
+        const int p = pathFor(edge, static_cast<int>(t), side);
         const bool forward = topology.edges[edge][0] == a;
         const auto& pv = binding.paths[p].visualVertices;
         for (std::size_t i = 0; i < pv.size(); ++i)
@@ -1588,7 +1869,8 @@ void parameteriseRegions(VisualCollisionBinding& binding,
 }
 
 /// The geodesic paths to find (5.2.2): one per border edge (the rim path),
-/// two per inner edge (a positive and a negative one).
+/// two per inner edge (a positive and a negative one), three per junction
+/// edge (and the crease's).
 void collectPathRequests(const VisualCollisionBinding& binding,
   const CollisionTopology& topology,
   std::vector<PathRequest>& rimRequests,
@@ -1597,16 +1879,20 @@ void collectPathRequests(const VisualCollisionBinding& binding,
   for (std::size_t e = 0; e < topology.edges.size(); ++e)
   {
     const auto& edge = topology.edges[e];
-    const auto& a = binding.pairedVisualVertices[edge[0]];
-    const auto& b = binding.pairedVisualVertices[edge[1]];
-    if (topology.edgeTriangleCount[e] == 1)
-    {
-      rimRequests.push_back({ static_cast<int>(e), 0, a[0], b[0] });
-      continue;
-    }
+    const int count = topology.edgeTriangleCount[e];
     const bool chord = topology.borderVertex[edge[0]] && topology.borderVertex[edge[1]];
-    innerRequests.push_back({ static_cast<int>(e), 1, a[0], b[0], chord });
-    innerRequests.push_back({ static_cast<int>(e), -1, a[1], b[1], chord });
+    for (int side : { 1, -1, 0 })
+    {
+      const bool wanted = count == 1 ? side == 0 : (side != 0 || count == 3);
+      if (!wanted)
+      {
+        continue; // a border edge has its rim path only, a junction all three
+      }
+      PathRequest r{ static_cast<int>(e), side };
+      r.chord = count > 1 && chord;
+      setRequestEnds(binding, topology, r);
+      (count == 1 ? rimRequests : innerRequests).push_back(r);
+    }
   }
 }
 
@@ -1814,7 +2100,7 @@ void remeshAlongAllPaths(VisualCollisionBinding& binding,
     [&](int k) -> const std::vector<char>*
     {
       const int inner = k - static_cast<int>(rimRequests.size());
-      return inner < 0 ? nullptr : &regions.halves[innerRequests[inner].side > 0 ? 0 : 1];
+      return inner < 0 ? nullptr : &regions.halves[halfIndex(innerRequests[inner].half)];
     },
     detours);
   const std::vector<int> separated = separateTouchingPaths(remeshed);
@@ -1871,7 +2157,8 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   binding.collisionTriangles = collision.triangles;
   binding.collisionRadii = radii;
   binding.collisionEdges = topology.edges;
-  const std::vector<std::array<SurfacePoint, 2>> pairedPoints =
+  binding.collisionSides = topology.sides;
+  const std::vector<PairedPoints> pairedPoints =
     pairCollisionVertices(visual, visualAdjacency, visualBvh, collision, radii, topology, settings);
   // Paired points inside visual edges become vertices first (one-point
   // paths); the visual vertices keep their indices.
@@ -1892,7 +2179,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   }
   const TriangleMesh& start = *startMesh;
   const TriangleMeshAdjacency& startAdjacency = *startAdjacencyPointer;
-  binding.pairedVisualVertices = pairedVertexIndices(pairedPoints, paired);
+  setPairedVisualVertices(binding, pairedVertexIndices(pairedPoints, paired));
 
   // 5.2.2 Geodesic paths: one per border edge (the rim path), two per inner
   // edge. First the rim paths, inserted into the mesh (5.2.3): together
@@ -1932,19 +2219,12 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   {
     for (PathRequest& r : innerRequests)
     {
-      const auto& edge = topology.edges[r.edge];
-      const int slot = r.side > 0 ? 0 : 1;
-      r.source = binding.pairedVisualVertices[edge[0]][slot];
-      r.target = binding.pairedVisualVertices[edge[1]][slot];
+      setRequestEnds(binding, topology, r);
     }
   }
   const TriangleMeshAdjacency rimmedAdjacency(rimmed.mesh);
-  const std::vector<std::int8_t> half = surfaceHalves(rimmed.mesh,
-    rimmedAdjacency,
-    rimmed.pathVertices,
-    collision,
-    binding.pairedVisualVertices,
-    topology);
+  const std::vector<std::int8_t> half =
+    surfaceHalves(rimmed.mesh, rimmedAdjacency, rimmed.pathVertices, collision, binding, topology);
   const SideRegions regions = sideRegions(rimmed, rimmedAdjacency, half);
   std::vector<SurfacePath> innerPaths;
   std::vector<int> innerDetours;
@@ -1976,6 +2256,7 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   // is seeded beside its own paths.
   report(progress, 0.8, "finding the regions of the collision triangles");
   PathsOfEdges pathFor;
+  pathFor.topology = &topology;
   pathFor.byEdge.assign(topology.edges.size(), { { -1, -1, -1 } });
   for (std::size_t k = 0; k < binding.paths.size(); ++k)
   {

@@ -10,6 +10,10 @@
 //  5.2.2 Paths: for every collision edge and side, the exact geodesic path
 //        between the two paired visual vertices (GeodesicPaths.h). A border
 //        edge has one path, along the rim, between its + and - regions.
+//        An edge of three triangles (a horizontal cleavage's junction,
+//        CollisionSides.h) has three: the top (+1), the bottom (-1) and the
+//        cleft's crease (0); a vertex inside a junction a third paired
+//        visual vertex, on the crease.
 //  5.2.3 Re-meshing: the paths are inserted into the visual mesh
 //        (PathRemeshing.h) and the regions they bound are flood-filled: one
 //        region per collision triangle and side, a topological disk.
@@ -25,6 +29,7 @@
 #ifndef VisualCollisionBinding_h
 #define VisualCollisionBinding_h
 
+#include "CollisionSides.h"
 #include "SurfacePath.h"
 #include "ThinTissueBindingModule.h"
 #include "ThinTissueError.h"
@@ -68,7 +73,9 @@ struct VisualVertexBinding
 struct BindingPath
 {
   int collisionEdge = -1;
-  int side = 0; ///< +1, -1, or 0 for a border edge's rim path
+  /// +1, -1, or 0 for a border edge's rim path and a junction's crease
+  /// path (CollisionSides::pathSide).
+  int side = 0;
   std::vector<int> visualVertices;
   double length = 0.0; ///< in the rest configuration
   /// Vertices of the geodesic the path was re-routed around, where another
@@ -121,6 +128,12 @@ public:
   /// Per collision vertex: its visual vertex on the + and - side (the same
   /// vertex twice for a border vertex).
   std::vector<std::array<int, 2>> pairedVisualVertices;
+  /// Per collision vertex inside a junction: its visual vertex on the
+  /// cleft's crease (-1 at every other vertex).
+  std::vector<int> creaseVisualVertices;
+  /// Which half of the visual surface each collision triangle side faces,
+  /// and the junction vertices.
+  CollisionSides collisionSides;
   /// Per visual vertex.
   std::vector<VisualVertexBinding> vertices;
   /// Per visual triangle: the collision triangle and side of its region.
@@ -137,6 +150,13 @@ public:
   Vector3 parametersInTriangle(std::size_t v, int t) const;
   /// Index of collision edge (a, b), -1 if there is none.
   int collisionEdgeIndex(int a, int b) const;
+  /// The paired visual vertex of collision vertex v that side `side` of
+  /// collision triangle t (one of v's triangles) sees.
+  int pairedVisualVertex(int v, int t, int side) const;
+  /// Per collision edge and side label + 1 (label -1, 0, +1 as in
+  /// BindingPath::side): the visual vertices its path joins, from the
+  /// edge's first vertex to its second; -1 where the edge has no such path.
+  std::vector<std::array<std::array<int, 2>, 3>> pathEnds() const;
 };
 
 /// Builds the binding. `visual`: closed, manifold, consistently oriented,

@@ -167,6 +167,7 @@ CuttableCollisionMesh::CuttableCollisionMesh(std::string name,
         "collision mesh '" + Name + "': vertex " + std::to_string(v) + " is not finite");
     }
   }
+  refuseJunctions();
   VertexTriangles.assign(RestPositions.size(), {});
   std::unordered_map<std::uint64_t, int> directed;
   for (std::size_t t = 0; t < Triangles.size(); ++t)
@@ -188,6 +189,27 @@ CuttableCollisionMesh::CuttableCollisionMesh(std::string name,
       }
     }
     addToAdjacency(static_cast<int>(t));
+  }
+}
+
+void CuttableCollisionMesh::refuseJunctions() const
+{
+  // A horizontal cleavage's junction (CollisionSides.h) is bound, and
+  // simulated, but its three-sided cut is not made yet.
+  std::unordered_map<std::uint64_t, int> count;
+  for (const Triangle& t : Triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (++count[edgeKey(a, b)] == 3)
+      {
+        throw InvalidInputError("collision mesh '" + Name + "': edge (" + std::to_string(a) + ", " +
+                                std::to_string(b) +
+                                ") joins three triangles (a horizontal cleavage's junction): "
+                                "cutting such a tissue is not supported yet");
+      }
+    }
   }
 }
 

@@ -120,6 +120,8 @@ private:
   struct TriangleFeatures;
   static std::uint64_t edgeKey(int a, int b);
   void addToAdjacency(int t);
+  /// Refuses an edge of three triangles by name (a cleavage's junction).
+  void refuseJunctions() const;
   void removeFromAdjacency(int t);
   int addVertex(const Vector3& rest, double radius);
   std::unordered_map<std::uint64_t, Crossing> findCrossings(const Blade& blade,

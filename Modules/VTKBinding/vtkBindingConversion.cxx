@@ -69,18 +69,27 @@ void readVertexBindings(vtkPolyData* visual,
 
 /// Paired vertices and paths, from the vertex bindings: the visual vertices
 /// bound to an edge and side, ordered by their parameter, between the
-/// visual vertices of the edge's ends.
-void rebuildPaths(const std::string& label, VisualCollisionBinding& binding)
+/// visual vertices of the edge's ends. A junction vertex's visual vertex on
+/// the cleft's crease is the one bound to it with side 0.
+void rebuildPaths(const std::string& label,
+  const TriangleMesh& collision,
+  VisualCollisionBinding& binding)
 {
   const std::size_t n = binding.collisionPositions.size();
+  binding.collisionSides = analyseCollisionSides(collision);
   binding.pairedVisualVertices.assign(n, { { -1, -1 } });
+  binding.creaseVisualVertices.assign(n, -1);
   std::map<std::pair<int, int>, std::vector<std::pair<double, int>>> onEdge;
   for (std::size_t v = 0; v < binding.vertices.size(); ++v)
   {
     const VisualVertexBinding& b = binding.vertices[v];
-    if (b.kind == BindingKind::CollisionVertex)
+    const auto element = static_cast<std::size_t>(b.element);
+    if (b.kind == BindingKind::CollisionVertex && b.side == 0 &&
+        binding.collisionSides.junctionVertex[element])
+      binding.creaseVisualVertices[element] = static_cast<int>(v);
+    else if (b.kind == BindingKind::CollisionVertex)
     {
-      auto& pair = binding.pairedVisualVertices[static_cast<std::size_t>(b.element)];
+      auto& pair = binding.pairedVisualVertices[element];
       if (b.side >= 0)
         pair[0] = static_cast<int>(v);
       if (b.side <= 0)
@@ -91,30 +100,28 @@ void rebuildPaths(const std::string& label, VisualCollisionBinding& binding)
   }
   for (std::size_t c = 0; c < n; ++c)
   {
-    if (binding.pairedVisualVertices[c][0] < 0 || binding.pairedVisualVertices[c][1] < 0)
+    if (binding.pairedVisualVertices[c][0] < 0 || binding.pairedVisualVertices[c][1] < 0 ||
+        (binding.collisionSides.junctionVertex[c] && binding.creaseVisualVertices[c] < 0))
       throw InvalidInputError(
         label + ": collision vertex " + std::to_string(c) + " has no visual vertex on each side");
   }
-  std::map<std::pair<int, int>, int> triangleCount;
-  for (const Triangle& t : binding.collisionTriangles)
-    for (int k = 0; k < 3; ++k)
-      ++triangleCount[{ std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]) }];
+  const auto ends = binding.pathEnds();
   for (std::size_t e = 0; e < binding.collisionEdges.size(); ++e)
   {
-    const auto& edge = binding.collisionEdges[e];
-    const bool rim = triangleCount[{ edge[0], edge[1] }] == 1;
-    for (int side : rim ? std::vector<int>{ 0 } : std::vector<int>{ 1, -1 })
+    for (int side : { 1, -1, 0 })
     {
-      const int slot = side >= 0 ? 0 : 1;
+      const auto& [source, target] = ends[e][side + 1];
+      if (source < 0)
+        continue;
       BindingPath path;
       path.collisionEdge = static_cast<int>(e);
       path.side = side;
       auto inner = onEdge[{ static_cast<int>(e), side }];
       std::sort(inner.begin(), inner.end());
-      path.visualVertices.push_back(binding.pairedVisualVertices[edge[0]][slot]);
+      path.visualVertices.push_back(source);
       for (const auto& [t, v] : inner)
         path.visualVertices.push_back(v);
-      path.visualVertices.push_back(binding.pairedVisualVertices[edge[1]][slot]);
+      path.visualVertices.push_back(target);
       for (std::size_t i = 0; i + 1 < path.visualVertices.size(); ++i)
         path.length += (binding.visual.positions[path.visualVertices[i + 1]] -
                         binding.visual.positions[path.visualVertices[i]])
@@ -173,7 +180,7 @@ VisualCollisionBinding bindingFromPolyData(vtkPolyData* visual,
     binding.triangleRegion.push_back(region);
     binding.triangleSide.push_back(static_cast<std::int8_t>(side));
   }
-  rebuildPaths(label, binding);
+  rebuildPaths(label, mesh, binding);
   return binding;
 }
 

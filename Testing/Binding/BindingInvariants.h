@@ -67,9 +67,18 @@ inline void checkBinding(const TriangleMesh& original,
   // Every visual vertex bound once, its parameters a point of its
   // collision element.
   std::set<int> pairedVertices;
+  ASSERT_EQ(b.creaseVisualVertices.size(), b.pairedVisualVertices.size());
   for (std::size_t c = 0; c < b.pairedVisualVertices.size(); ++c)
   {
-    for (int v : b.pairedVisualVertices[c])
+    std::vector<int> own(b.pairedVisualVertices[c].begin(), b.pairedVisualVertices[c].end());
+    // A junction vertex has a third, on the cleft's crease; no other has.
+    EXPECT_EQ(b.creaseVisualVertices[c] >= 0, b.collisionSides.junctionVertex[c] != 0)
+      << "collision vertex " << c;
+    if (b.creaseVisualVertices[c] >= 0)
+    {
+      own.push_back(b.creaseVisualVertices[c]);
+    }
+    for (int v : own)
     {
       EXPECT_EQ(b.vertices[v].kind, BindingKind::CollisionVertex);
       EXPECT_EQ(b.vertices[v].element, static_cast<int>(c));
@@ -77,9 +86,12 @@ inline void checkBinding(const TriangleMesh& original,
     }
     if (b.pairedVisualVertices[c][0] != b.pairedVisualVertices[c][1])
     {
-      EXPECT_EQ(pairedVertices.count(b.pairedVisualVertices[c][0]), 1u);
+      EXPECT_EQ(std::set<int>(own.begin(), own.end()).size(), own.size())
+        << "collision vertex " << c << ": its sides share a visual vertex";
     }
   }
+  EXPECT_EQ(
+    pairedVertices.size(), std::set<int>(pairedVertices.begin(), pairedVertices.end()).size());
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
   {
     const VisualVertexBinding& vb = b.vertices[v];
@@ -160,7 +172,10 @@ inline void checkBinding(const TriangleMesh& original,
   // paired points inside visual edges are vertices; a side's path against
   // edge paths over that side's triangles, the half it is kept on).
   const TriangleMeshAdjacency adjacency(mesh);
-  auto edgePathLength = [&](int source, int target, int side)
+  // The half each visual triangle lies on (positive, negative, a cleft's).
+  auto halfOf = [&](int t)
+  { return b.collisionSides.halves[b.triangleRegion[t]][sideSlot(b.triangleSide[t])]; };
+  auto edgePathLength = [&](int source, int target, const SurfaceHalf* half)
   {
     std::vector<double> distance(mesh.vertexCount(), 1e300);
     using Entry = std::pair<double, int>;
@@ -182,7 +197,7 @@ inline void checkBinding(const TriangleMesh& original,
       for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
            ++t)
       {
-        if (side != 0 && b.triangleSide[*t] != side)
+        if (half != nullptr && halfOf(*t) != *half)
         {
           continue;
         }
@@ -214,19 +229,37 @@ inline void checkBinding(const TriangleMesh& original,
   for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
     longestEdge = std::max(longestEdge,
       (mesh.positions[adjacency.edge(e)[0]] - mesh.positions[adjacency.edge(e)[1]]).norm());
+  const auto ends = b.pathEnds();
+  // The half of each path (none for a rim path): the half its wedge's
+  // triangle sides face.
+  std::map<int, SurfaceHalf> pathHalf;
+  std::map<int, int> edgeTriangles;
+  for (const Triangle& t : b.collisionTriangles)
+    for (int k = 0; k < 3; ++k)
+      ++edgeTriangles[b.collisionEdgeIndex(t[k], t[(k + 1) % 3])];
+  for (std::size_t t = 0; t < b.collisionTriangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      const Triangle& ct = b.collisionTriangles[t];
+      const int e = b.collisionEdgeIndex(ct[k], ct[(k + 1) % 3]);
+      for (int side : { 1, -1 })
+        if (edgeTriangles[e] > 1)
+          pathHalf[3 * e + b.collisionSides.pathSide(static_cast<int>(t), side, edgeTriangles[e]) +
+                   1] = b.collisionSides.halves[t][sideSlot(side)];
+    }
   for (const BindingPath& path : b.paths)
   {
-    const auto& edge = b.collisionEdges[path.collisionEdge];
-    const int slot = path.side < 0 ? 1 : 0;
     ASSERT_FALSE(path.visualVertices.empty());
-    EXPECT_EQ(path.visualVertices.front(), b.pairedVisualVertices[edge[0]][slot]);
-    EXPECT_EQ(path.visualVertices.back(), b.pairedVisualVertices[edge[1]][slot]);
+    EXPECT_EQ(path.visualVertices.front(), ends[path.collisionEdge][path.side + 1][0]);
+    EXPECT_EQ(path.visualVertices.back(), ends[path.collisionEdge][path.side + 1][1]);
     for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
     {
       EXPECT_GE(adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]), 0);
     }
-    const double edgePath =
-      edgePathLength(path.visualVertices.front(), path.visualVertices.back(), path.side);
+    const auto half = pathHalf.find(path.collisionEdge * 3 + path.side + 1);
+    const double edgePath = edgePathLength(path.visualVertices.front(),
+      path.visualVertices.back(),
+      half != pathHalf.end() ? &half->second : nullptr);
     // The re-meshed surface holds the path's own edges, so the edge path
     // is at most the path; the path is the shortest up to the points the
     // re-meshing merged (each moved by at most 1e-3 of its edge), and up

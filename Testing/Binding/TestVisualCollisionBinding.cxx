@@ -95,6 +95,83 @@ TEST(VisualCollisionBinding, TornMenisciAreBoundExactly)
   }
 }
 
+// A horizontal cleavage: the collision mid-surface splits along a U into an
+// upper and a lower leaf, so its junction edges join three triangles (the
+// body and both leaves). Each junction edge gets three paths (top, bottom,
+// the cleft's crease); each vertex inside the junction three paired visual
+// vertices; the cleft's walls are a third half of the visual surface, on
+// which the leaves' inner sides are bound. The thesis has no such tear.
+TEST(VisualCollisionBinding, HorizontalCleavageIsBoundPerWedge)
+{
+  MeniscusParameters parameters;
+  parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
+  const MeniscusModel cleaved = makeMeniscus(parameters);
+  const VisualCollisionBinding binding = bindVisualToCollision(cleaved.visual, cleaved.collision);
+  checkBinding(cleaved.visual, cleaved.collision, binding);
+
+  std::map<int, int> trianglesOfEdge;
+  for (const Triangle& t : binding.collisionTriangles)
+    for (int k = 0; k < 3; ++k)
+      ++trianglesOfEdge[binding.collisionEdgeIndex(t[k], t[(k + 1) % 3])];
+  std::map<int, std::set<int>> pathSides;
+  for (const BindingPath& path : binding.paths)
+    EXPECT_TRUE(pathSides[path.collisionEdge].insert(path.side).second) << "one path per side";
+  int junctionEdges = 0;
+  for (const auto& [edge, count] : trianglesOfEdge)
+  {
+    const std::set<int> expected =
+      count == 1 ? std::set<int>{ 0 }
+                 : (count == 2 ? std::set<int>{ -1, 1 } : std::set<int>{ -1, 0, 1 });
+    EXPECT_EQ(pathSides[edge], expected) << "collision edge " << edge << " of " << count;
+    junctionEdges += count == 3 ? 1 : 0;
+  }
+  EXPECT_GE(junctionEdges, 3);
+
+  // Junction vertices: their three visual vertices lie on the top, the
+  // bottom and the cleft's walls, on the side their normals say.
+  int junctionVertices = 0;
+  std::vector<Vector3> normals(binding.collisionPositions.size(), Vector3::Zero());
+  for (const Triangle& t : binding.collisionTriangles)
+  {
+    const auto& p = binding.collisionPositions;
+    for (int v : t)
+      normals[v] += (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+  }
+  for (std::size_t c = 0; c < binding.collisionPositions.size(); ++c)
+  {
+    if (!binding.collisionSides.junctionVertex[c])
+      continue;
+    ++junctionVertices;
+    const Vector3& origin = binding.collisionPositions[c];
+    const Vector3 up = normals[c].normalized();
+    const auto& positions = binding.visual.positions;
+    const double above = (positions[binding.pairedVisualVertices[c][0]] - origin).dot(up);
+    const double below = (positions[binding.pairedVisualVertices[c][1]] - origin).dot(up);
+    const double crease = (positions[binding.creaseVisualVertices[c]] - origin).dot(up);
+    EXPECT_GT(above, 0.0) << "junction vertex " << c;
+    EXPECT_LT(below, 0.0) << "junction vertex " << c;
+    EXPECT_LT(crease, above) << "junction vertex " << c;
+    EXPECT_GT(crease, below) << "junction vertex " << c;
+  }
+  EXPECT_GE(junctionVertices, 2);
+
+  // The cleft's walls: the visual triangles bound to the leaves' inner
+  // sides, a third half with their own area.
+  double cleftArea = 0.0;
+  for (std::size_t t = 0; t < binding.visual.triangleCount(); ++t)
+    if (binding.collisionSides.halves[binding.triangleRegion[t]]
+                                     [sideSlot(binding.triangleSide[t])] == SurfaceHalf::Cleft)
+      cleftArea += binding.visual.triangleArea(t);
+  EXPECT_GT(cleftArea, 0.05 * binding.visual.surfaceArea());
+
+  // The binding file keeps the crease vertices; the sides come back.
+  const auto read = readBindingBytes(bindingCacheBytes(binding, 1), "cleavage");
+  ASSERT_TRUE(read.has_value());
+  EXPECT_EQ(read->binding.creaseVisualVertices, binding.creaseVisualVertices);
+  EXPECT_EQ(read->binding.collisionSides.junctionVertex, binding.collisionSides.junctionVertex);
+  EXPECT_EQ(read->binding.pathEnds(), binding.pathEnds());
+}
+
 TEST(VisualCollisionBinding, InnerEdgesBetweenRimVerticesGetAPathOnEachSide)
 {
   // The meniscus's collision grid cuts its four corners with inner edges
@@ -269,6 +346,26 @@ TEST(VisualCollisionBinding, BadInputIsNamed)
     r = 0.01;
   }
   expectError(s.visual, thinRadii, "not thin");
+  // Collision triangles oriented against their neighbours.
+  TriangleMesh flipped = s.collision;
+  std::swap(flipped.triangles[0][0], flipped.triangles[0][1]);
+  expectError(s.visual, flipped, "oriented inconsistently");
+  // An edge of four or more triangles: three extra ones on an edge (at most
+  // three, a cleavage's junction, join at an edge).
+  TriangleMesh fourAtAnEdge = s.collision;
+  const Triangle c0 = fourAtAnEdge.triangles[0];
+  const Vector3 middle = (fourAtAnEdge.positions[c0[0]] + fourAtAnEdge.positions[c0[1]]) / 2.0;
+  const double radius = fourAtAnEdge.pointAttributes.get("Radius").values[c0[0]];
+  for (double dz : { 0.5 * radius, -0.5 * radius, 0.25 * radius })
+  {
+    fourAtAnEdge.positions.push_back(middle + Vector3(0.0, 0.0, dz));
+    if (fourAtAnEdge.hasNormals())
+      fourAtAnEdge.normals.push_back(fourAtAnEdge.normals[c0[0]]);
+    fourAtAnEdge.pointAttributes.get("Radius").values.push_back(0.25 * radius);
+    fourAtAnEdge.triangles.push_back(
+      { c0[1], c0[0], static_cast<int>(fourAtAnEdge.positions.size()) - 1 });
+  }
+  expectError(s.visual, fourAtAnEdge, "triangles (at most three");
 }
 
 TEST(BindingCache, RoundTripStaleAndDamagedFiles)

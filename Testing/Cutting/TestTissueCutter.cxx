@@ -169,6 +169,27 @@ TEST(TissueCutter, BadBladesLeaveTheTissueUntouched)
   EXPECT_THROW(TissueCutter(noRadius, sheet.simulation), InvalidInputError);
 }
 
+// The horizontal cleavage binds (its junction edges of three triangles get
+// a path per wedge), but its three-sided cut is not made yet: the cutter
+// refuses it by name instead of cutting it wrong.
+TEST(TissueCutter, AHorizontalCleavageIsRefusedByName)
+{
+  MeniscusParameters parameters;
+  parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
+  const MeniscusModel cleaved = makeMeniscus(parameters);
+  const VisualCollisionBinding binding = bindVisualToCollision(cleaved.visual, cleaved.collision);
+  try
+  {
+    TissueCutter cutter(binding, cleaved.simulation);
+    ADD_FAILURE() << "a cutter was made for a collision mesh with a junction";
+  }
+  catch (const InvalidInputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("horizontal cleavage's junction"), std::string::npos)
+      << e.what();
+  }
+}
+
 TEST(TissueCutterProperty, RandomSweepsOverTheSheetKeepEveryInvariant)
 {
   const TissueModel sheet = makeThinSheet(ThinSheetParameters{});

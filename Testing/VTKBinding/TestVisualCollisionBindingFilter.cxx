@@ -4,7 +4,10 @@
 // and PrintSelf.
 #include "vtkVisualCollisionBindingFilter.h"
 
+#include "MeniscusModel.h"
 #include "ThinSheetModel.h"
+#include "VisualCollisionBinding.h"
+#include "vtkBindingConversion.h"
 #include "vtkThinSheetSource.h"
 #include "vtkThinTissueConversion.h"
 
@@ -541,4 +544,28 @@ TEST(VisualCollisionBindingFilter, PrintSelfNamesSettings)
   EXPECT_NE(text.str().find("InsideTolerance: 0.001"), std::string::npos) << text.str();
   EXPECT_NE(text.str().find("CacheFileName: sheet.ttbind"), std::string::npos) << text.str();
   EXPECT_NE(text.str().find("Parallel: On"), std::string::npos) << text.str();
+}
+
+// The binding arrays carry a horizontal cleavage's binding: its crease
+// vertices (bound to their junction vertex with side 0) and the three paths
+// of each junction edge come back from the arrays as they were made.
+TEST(VisualCollisionBindingFilter, AHorizontalCleavageBindingRoundTripsThroughTheArrays)
+{
+  using namespace thintissue;
+  MeniscusParameters parameters;
+  parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
+  const MeniscusModel cleaved = makeMeniscus(parameters);
+  const VisualCollisionBinding made = bindVisualToCollision(cleaved.visual, cleaved.collision);
+  const VisualCollisionBinding read =
+    bindingFromPolyData(boundVisualPolyData(made), toPolyData(cleaved.collision));
+  EXPECT_EQ(read.pairedVisualVertices, made.pairedVisualVertices);
+  EXPECT_EQ(read.creaseVisualVertices, made.creaseVisualVertices);
+  EXPECT_TRUE(read.collisionSides.hasJunctions());
+  ASSERT_EQ(read.paths.size(), made.paths.size());
+  std::map<std::pair<int, int>, std::vector<int>> madePaths;
+  for (const BindingPath& path : made.paths)
+    madePaths[{ path.collisionEdge, path.side }] = path.visualVertices;
+  for (const BindingPath& path : read.paths)
+    EXPECT_EQ(path.visualVertices, (madePaths[{ path.collisionEdge, path.side }]))
+      << "path of collision edge " << path.collisionEdge << " side " << path.side;
 }
