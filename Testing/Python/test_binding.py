@@ -106,6 +106,39 @@ class BindingTest(unittest.TestCase):
         self.assertIn("'Radius'", binding.GetLastErrorMessage())
         self.assertEqual(binding.GetOutputDataObject(0).GetNumberOfPoints(), 0)
 
+    def test_horizontal_cleavage_binds_its_crease(self):
+        # The cleaved meniscus's collision mesh has junction edges of three
+        # triangles: three paths each (sides 1, -1 and 0, the crease), and a
+        # crease vertex (bound to its junction vertex with side 0) beside
+        # the top and the bottom ones of every inner junction vertex.
+        meniscus = thintissue.vtkMeniscusSource()
+        meniscus.SetTearType(thintissue.vtkMeniscusSource.HorizontalCleavageTear)
+        binding = thintissue.vtkVisualCollisionBindingFilter()
+        binding.SetInputConnection(0, meniscus.GetOutputPort(0))
+        binding.SetCollisionConnection(meniscus.GetOutputPort(1))
+        binding.Update()
+        self.assertEqual(binding.GetLastErrorMessage(), "")
+        paths = binding.GetOutputDataObject(1)
+        edge = paths.GetCellData().GetArray("CollisionEdge")
+        side = paths.GetCellData().GetArray("Side")
+        sides_per_edge = {}
+        for line in range(paths.GetNumberOfLines()):
+            sides_per_edge.setdefault(int(edge.GetTuple1(line)), set()).add(int(side.GetTuple1(line)))
+        junctions = [e for e, s in sides_per_edge.items() if s == {-1, 0, 1}]
+        self.assertGreaterEqual(len(junctions), 3)
+
+        visual = binding.GetOutputDataObject(0)
+        kind = visual.GetPointData().GetArray("BindingKind")
+        element = visual.GetPointData().GetArray("BindingElement")
+        point_side = visual.GetPointData().GetArray("BindingSide")
+        sides_of_vertex = {}
+        for v in range(visual.GetNumberOfPoints()):
+            if int(kind.GetTuple1(v)) == 0:  # bound to a collision vertex
+                sides_of_vertex.setdefault(int(element.GetTuple1(v)), []).append(
+                    int(point_side.GetTuple1(v)))
+        three_sided = [c for c, s in sides_of_vertex.items() if sorted(s) == [-1, 0, 1]]
+        self.assertGreaterEqual(len(three_sided), 2)
+
     def test_print_self_names_settings(self):
         binding = thintissue.vtkVisualCollisionBindingFilter()
         self.assertIn("RadiusArrayName: Radius", str(binding))
