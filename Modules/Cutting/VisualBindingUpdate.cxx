@@ -269,7 +269,7 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
     triangleIn[i] = piece;
     ++pieceStart[piece + 1];
     for (int v : region.newLocalTriangles[i])
-      centroids[piece] += region.planar[v] / 3.0;
+      centroids[piece] += region.planar[v];
   }
   const std::size_t pieces = centroids.size();
   for (std::size_t p = 0; p < pieces; ++p)
@@ -304,7 +304,7 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
   for (std::size_t p = 0; p < pieces; ++p)
   {
     const int size = pieceStart[p + 1] - pieceStart[p];
-    const int c = pieceContaining(region.pieces, centroids[p] / static_cast<double>(size));
+    const int c = pieceContaining(region.pieces, centroids[p] / (3.0 * size));
     rebindPiece(region,
       members.data() + pieceStart[p],
       size,
@@ -330,7 +330,13 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
   Eigen::Matrix2d frameMatrix;
   frameMatrix.col(0) = region.frame[1] - region.frame[0];
   frameMatrix.col(1) = region.frame[2] - region.frame[0];
-  const Eigen::Matrix2d frameInverse = frameMatrix.inverse();
+  // The parent parameters of a point p of the plane are x = e0 + E F^-1
+  // (p - frame[0]) (F the frame's sides, E = [-1 -1; 1 0; 0 1]), and
+  // formula 5-2 makes them y = M^-T x: one affine map y = A p + o.
+  Eigen::Matrix<double, 3, 2> sides;
+  sides << -1.0, -1.0, 1.0, 0.0, 0.0, 1.0;
+  const Eigen::Matrix<double, 3, 2> map = inverse.transpose() * sides * frameMatrix.inverse();
+  const Vector3 offset = inverse.transpose().col(0) - map * region.frame[0];
   std::vector<int>& childRegion = Regions[child][region.side];
   if (childRegion.empty())
     childRegion.reserve(region.newTriangles.size());
@@ -351,11 +357,9 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
       VisualVertexBinding& b = Bindings[v];
       // The parent parameters of where the vertex lies in the plane it
       // was cut in (its binding's own, unless a fold was repaired there).
-      const Vector2 bc = frameInverse * (region.planar[local] - region.frame[0]);
-      const Vector3 x(1.0 - bc.x() - bc.y(), bc.x(), bc.y());
-      const Vector3 y = (x.transpose() * inverse).transpose();
+      const Vector3 y = (map * region.planar[local] + offset).cwiseMax(0.0);
       b.element = child;
-      b.parameters = y.cwiseMax(0.0) / y.cwiseMax(0.0).sum();
+      b.parameters = y / y.sum();
       context.rebound.push_back(v);
     }
   }
@@ -462,6 +466,13 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
   for (int T : context.cut->changedTriangles)
   {
     const Triangle& tri = collisionTriangles[T];
+    // A claim needs a corner copied by this cut (a vertex bound to that
+    // corner's original, or an edge whose ends are not both corners): the
+    // regions of a triangle that kept its corners (most pieces of the split
+    // ones on the side that stays) are not scanned.
+    if (context.root(tri[0]) == tri[0] && context.root(tri[1]) == tri[1] &&
+        context.root(tri[2]) == tri[2])
+      continue;
     for (int side = 0; side < 2; ++side)
     {
       for (int t : Regions[T][side])

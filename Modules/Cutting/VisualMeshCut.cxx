@@ -351,13 +351,6 @@ int cornerIndex(const Vector3& barycentric)
 } // namespace
 
 //------------------------------------------------------------------------------
-std::uint64_t CuttableVisualMesh::edgeKey(int a, int b)
-{
-  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
-  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-  return (lo << 32) | hi;
-}
-
 namespace
 {
 
@@ -939,6 +932,7 @@ void CuttableVisualMesh::traceCut(RegionCut& region,
   buffers.nodes.push_back({ 1.0, end });
   const std::size_t count = region.vertices.size();
   buffers.signedDistance.resize(count);
+  buffers.lineSide.resize(count);
   buffers.vertexNode.assign(count, -1);
   buffers.edgeHead.assign(count, -1);
   buffers.edgeEntries.clear();
@@ -955,6 +949,9 @@ void CuttableVisualMesh::traceCut(RegionCut& region,
     const Vector2 x = region.planar[i] - from;
     const double d = cross2(along, x) / length;
     buffers.signedDistance[i] = d;
+    buffers.lineSide[i] = d > tolerance ? 1 : (d < -tolerance ? 2 : 0);
+    if (buffers.vertexNode[i] >= 0)
+      buffers.lineSide[i] = 0;
     if (std::abs(d) >= tolerance)
       continue;
     const double s = x.dot(along) / (length * length);
@@ -964,6 +961,15 @@ void CuttableVisualMesh::traceCut(RegionCut& region,
     {
       buffers.vertexNode[i] = static_cast<int>(buffers.nodes.size());
       buffers.nodes.push_back({ s, SurfacePoint::atVertex(region.vertices[i]) });
+    }
+  }
+  for (int n = 0; n < 2; ++n)
+  {
+    const SurfacePoint& p = buffers.nodes[n].point;
+    if (!p.isVertex())
+    {
+      buffers.lineSide[localOf(p.edgeStart)] |= 4;
+      buffers.lineSide[localOf(p.edgeEnd)] |= 4;
     }
   }
   linkCrossedTriangles(region, tolerance, from, along);
@@ -988,6 +994,7 @@ void CuttableVisualMesh::linkCrossedTriangles(RegionCut& region,
   CutBuffers& buffers = Buffers;
   const auto& nodes = buffers.nodes;
   const auto& signedDistance = buffers.signedDistance;
+  const auto& lineSide = buffers.lineSide;
   const auto& vertexNode = buffers.vertexNode;
   const double squaredLength = along.squaredNorm();
   // The cut's ends lie on the line whatever round-off says (local indices).
@@ -1006,15 +1013,14 @@ void CuttableVisualMesh::linkCrossedTriangles(RegionCut& region,
   for (std::size_t i = 0; i < region.triangles.size(); ++i)
   {
     const Triangle& locals = region.localTriangles[i];
-    // Most triangles lie wholly on one side of the line: nothing to do.
-    const double d0 = signedDistance[locals[0]], d1 = signedDistance[locals[1]],
-                 d2 = signedDistance[locals[2]];
-    if (((d0 > tolerance && d1 > tolerance && d2 > tolerance) ||
-          (d0 < -tolerance && d1 < -tolerance && d2 < -tolerance)) &&
-        vertexNode[locals[0]] < 0 && vertexNode[locals[1]] < 0 && vertexNode[locals[2]] < 0 &&
-        (!endsOnEdges || (buffers.edgeNode(locals[0], locals[1]) < 0 &&
-                           buffers.edgeNode(locals[1], locals[2]) < 0 &&
-                           buffers.edgeNode(locals[2], locals[0]) < 0)))
+    // Most triangles lie wholly on one side of the line, off the nodes:
+    // nothing to do (bits of lineSide; an end of the cut inside one of
+    // their edges is looked up only beside such an edge).
+    const char s0 = lineSide[locals[0]], s1 = lineSide[locals[1]], s2 = lineSide[locals[2]];
+    if ((s0 & s1 & s2 & 3) && (!((s0 | s1 | s2) & 4) || !endsOnEdges ||
+                                (buffers.edgeNode(locals[0], locals[1]) < 0 &&
+                                  buffers.edgeNode(locals[1], locals[2]) < 0 &&
+                                  buffers.edgeNode(locals[2], locals[0]) < 0)))
       continue;
     // Only these triangles can hold a point of the traced path.
     region.candidate[i] = 1;

@@ -204,6 +204,11 @@ private:
     };
     std::vector<Node> nodes;
     std::vector<double> signedDistance;
+    /// Per local vertex: 1 beyond the tolerance on the cut line's + side,
+    /// 2 on its - side, 0 on the line or a node; | 4 at an end of an edge
+    /// holding an end of the cut. A triangle whose corners share bit 1 or
+    /// 2 lies wholly on one side (linkCrossedTriangles' quick rejection).
+    std::vector<char> lineSide;
     std::vector<int> vertexNode;
     std::vector<int> edgeHead;
     std::vector<std::array<int, 3>> edgeEntries;
@@ -254,7 +259,13 @@ private:
   struct EdgePoint;
   struct CrossingPath;
 
-  static std::uint64_t edgeKey(int a, int b);
+  /// (lower, higher) in one key; inline: looked up per region vertex.
+  static std::uint64_t edgeKey(int a, int b)
+  {
+    const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+    const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+    return (lo << 32) | hi;
+  }
   void reserveRoom();
   int edgeIndex(int a, int b);
   int addVertexCopy(int source);
