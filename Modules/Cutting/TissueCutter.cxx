@@ -382,6 +382,7 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
     std::vector<int> candidates;
     std::vector<int> firstTry;
     firstTry.reserve(rest.size() - firstNew);
+    HexahedronSeen.resize(Simulation.hexahedronCount(), 0);
     for (int v = firstNew; v < static_cast<int>(rest.size()); ++v)
     {
       const int t = Visual.collisionTriangleOf(v, Collision);
@@ -390,7 +391,12 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
       static const std::vector<int> none;
       for (const int h : t >= 0 ? Branches.hexahedraOf(t) : none)
       {
-        candidates.push_back(h);
+        // Each candidate once (marked: the new vertices share a few).
+        if (!HexahedronSeen[h])
+        {
+          HexahedronSeen[h] = 1;
+          candidates.push_back(h);
+        }
         Vector3 centre = Vector3::Zero();
         for (const int node : Simulation.hexahedra[h])
           centre += Simulation.nodes[node];
@@ -403,8 +409,9 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
       }
       firstTry.push_back(nearest);
     }
+    for (int h : candidates)
+      HexahedronSeen[h] = 0;
     std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     VisualEmbedding.appendPoints(
       std::vector<Vector3>(rest.begin() + firstNew, rest.end()), firstTry, Simulation, candidates);
     for (int v = firstNew; v < static_cast<int>(rest.size()); ++v)

@@ -219,6 +219,9 @@ private:
   /// Per visual vertex, 0 between cuts: marks while a cut re-embeds.
   std::vector<char> VisualSeen;
   std::vector<char> CollisionSeen; ///< per collision vertex, all 0 between cuts
+  /// Per hexahedron (copies too), all 0 between cuts: the candidates of
+  /// the new visual vertices, each once.
+  std::vector<char> HexahedronSeen;
   /// Visual vertices a cut may move to another piece without copying
   /// their hexahedron, revisited by the cuts that may have done so:
   /// - those embedded in a hexahedron that holds a triangle around their

@@ -201,7 +201,7 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
   parent.resize(count + triangleCount);
   std::iota(parent.begin(), parent.end(), 0);
   const auto& corners = region.newLocalTriangles;
-  auto& borderEdges = buffers.borderEdges; // (a, b, triangle), a < b
+  auto& borderEdges = buffers.borderEdges; // (edge key, set)
   borderEdges.clear();
   auto& representative = buffers.representative; // per triangle: its set
   representative.resize(triangleCount);
@@ -228,13 +228,14 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
       if (special[a] && special[b] &&
           !std::binary_search(
             cutEdges.begin(), cutEdges.end(), std::make_pair(std::min(a, b), std::max(a, b))))
-        borderEdges.push_back({ { std::min(a, b), std::max(a, b), self } });
+        borderEdges.emplace_back(edgeKey(a, b), self);
     }
   }
+  // By edge (one key: sorting triples had cost more than the joins).
   std::sort(borderEdges.begin(), borderEdges.end());
   for (std::size_t e = 0; e + 1 < borderEdges.size(); ++e)
-    if (borderEdges[e][0] == borderEdges[e + 1][0] && borderEdges[e][1] == borderEdges[e + 1][1])
-      joinSets(parent, borderEdges[e][2], borderEdges[e + 1][2]);
+    if (borderEdges[e].first == borderEdges[e + 1].first)
+      joinSets(parent, borderEdges[e].second, borderEdges[e + 1].second);
   rebindPieces(region, onCut, context);
 }
 

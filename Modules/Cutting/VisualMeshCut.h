@@ -236,14 +236,14 @@ private:
     /// assignPieces: per local vertex, whether it lies on a traced cut or
     /// the region's border; the traced cuts' edges (local, lower first);
     /// union-find over local vertices then triangles, and each
-    /// triangle's set; edges between special vertices (a, b, set); the
+    /// triangle's set; edges between special vertices (edge key, set); the
     /// pieces (per set root, then as a cursor), their starts in `members`
     /// and centroid sums; per triangle its piece.
     std::vector<char> special;
     std::vector<std::pair<int, int>> cutEdges;
     std::vector<int> parent;
     std::vector<int> representative;
-    std::vector<std::array<int, 3>> borderEdges;
+    std::vector<std::pair<std::uint64_t, int>> borderEdges;
     std::vector<int> pieceOf;
     std::vector<int> pieceStart;
     std::vector<Vector2> centroids;
