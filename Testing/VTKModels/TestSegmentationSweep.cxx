@@ -383,3 +383,18 @@ TEST(SegmentationSweep, NoCollisionVertexStandsOnASliverOfTissue)
   EXPECT_GE(*thinnest, 0.0249 * generated.largestThickness)
     << "collision vertex " << thinnest - radii.begin();
 }
+// A segmentation's tear lip is a staircase: beside a step the tissue is a
+// thin shelf whose middle lies outside the thicker column next to it. An
+// inner collision vertex stood on such a shelf (the longitudinal tear of
+// seed 1001: vertex 97, radius 0.154 mm, its positive normal met the
+// step's wall 0.022 mm away and its negative one the far face 0.9 mm
+// away), its negative visual vertex fell on the positive side of the rim
+// paths ("collision vertex 39 finds its positive visual vertex, and
+// collision vertex 97 its negative one, on one piece ... (66 positive and
+// 1 negative ones there)"). Inner vertices now stand where the columns
+// around them hold their middle. The tear prepares, binds and takes a
+// press.
+TEST(SegmentationSweep, NoInnerCollisionVertexStandsOnAShelfBesideAStep)
+{
+  EXPECT_EQ(prepareAndCheck(segmented(tissueModel("LongitudinalTear"), sweepCase(1001)), true), "");
+}
