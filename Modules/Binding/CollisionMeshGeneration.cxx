@@ -662,40 +662,6 @@ double distanceToLoops(const std::vector<Loop>& loops, const Vector2& q)
   return best;
 }
 
-/// Whether an inner collision vertex at q stands on tissue at least 2
-/// `thinnest` thick whose middle is held by the tissue around it: the
-/// columns one thickness away on six sides (at most `reach`: the
-/// lattice's margin, so that rings stay inside the border) all contain
-/// q's middle. Beside
-/// a segmentation's step (a tear's lip, a staircase wall) the middle of a
-/// thin shelf lies outside the thicker column next to it; the binding's
-/// normal ray from such a vertex meets the step's wall within a hair on
-/// one side and the far face on the other, and can pair the vertex with
-/// the wrong side of the rim paths.
-bool standsOnTissue(const ProjectedSurface& tissue, const Vector2& q, double thinnest, double reach)
-{
-  double bottom = 0.0;
-  double top = 0.0;
-  if (!tissue.crossing(q, bottom, top) || top - bottom < 2.0 * thinnest)
-  {
-    return false;
-  }
-  const double middle = 0.5 * (bottom + top);
-  const double ring = std::min(top - bottom, reach);
-  for (int k = 0; k < 6; ++k)
-  {
-    const double angle = M_PI * k / 3.0;
-    double low = 0.0;
-    double high = 0.0;
-    if (!tissue.crossing(q + ring * Vector2(std::cos(angle), std::sin(angle)), low, high) ||
-        middle < low || middle > high)
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
 std::vector<Vector2> latticeInside(const std::vector<Loop>& loops,
   double h,
   double margin,
@@ -727,7 +693,10 @@ std::vector<Vector2> latticeInside(const std::vector<Loop>& loops,
         continue;
       }
       const double d = distanceToLoops(loops, q);
-      if (d >= margin && (tissue == nullptr || standsOnTissue(*tissue, q, thinnest, margin)))
+      double bottom = 0.0;
+      double top = 0.0;
+      if (d >= margin && (tissue == nullptr ||
+                           (tissue->crossing(q, bottom, top) && top - bottom >= 2.0 * thinnest)))
       {
         points.emplace_back(d, q);
       }
