@@ -99,9 +99,17 @@ struct CollisionScene::Implementation
   {
     ThickMeshView a;
     ThickMeshView b;
+    /// A tissue against an obstacle: its candidates (temporal coherence).
+    contact_kernels::StaticPairCandidates* candidates = nullptr;
+    double margin = 0.0;
     std::vector<FeatureContact> contacts;
     contact_kernels::MeshMeshWorkspace workspace;
   };
+  /// Per tissue and obstacle: the features that may touch (kept between
+  /// steps while the tissue moves less than the margin).
+  std::vector<std::vector<contact_kernels::StaticPairCandidates>> obstacleCandidates;
+  /// Per tissue: the candidate margin and the collision mesh it is for.
+  std::vector<std::pair<std::uint64_t, double>> candidateMargins;
   // Reused buffers (grown, never shrunk: no allocation once warm).
   std::vector<MeshPairJob> meshPairs;
   std::size_t meshPairCount = 0;
@@ -315,6 +323,440 @@ struct CollisionScene::Implementation
     range.count = static_cast<int>(springs.size()) - range.first;
     return range;
   }
+
+  // --- Detection (CollisionScene::detectContacts), in passes over the body
+  // pairs: the first queues the thick mesh pairs, whose narrow phases then
+  // run (in parallel when large), the second adds every contact in the
+  // order of the body pairs (the same contacts, in the same order, as one
+  // thread would find).
+  enum class Pass
+  {
+    QueueMeshPairs,
+    AddContacts
+  };
+  struct Detection
+  {
+    std::vector<SceneContact>& contacts;
+    const CollisionSceneParameters& parameters;
+    CollisionStatistics& statistics;
+    Pass pass = Pass::QueueMeshPairs;
+    std::size_t nextMeshPair = 0;
+  };
+
+  /// Empties last step's contacts and springs; maps the collision meshes.
+  void startDetection(std::vector<SceneContact>& contacts)
+  {
+    contacts.clear();
+    features.clear();
+    links.clear();
+    linkEntries.clear();
+    for (auto& t : tissues)
+    {
+      t.collision->update(t.fem->positions());
+    }
+    for (auto& springs : solverSprings)
+    {
+      springs.clear();
+    }
+    meshPairCount = 0;
+    obstacleCandidates.resize(tissues.size());
+    for (auto& candidates : obstacleCandidates)
+    {
+      candidates.resize(obstacles.size());
+    }
+    candidateMargins.resize(tissues.size(), { 0, 0.0 });
+  }
+
+  int candidateSearches() const
+  {
+    int searches = 0;
+    for (const auto& ofTissue : obstacleCandidates)
+    {
+      for (const auto& candidates : ofTissue)
+      {
+        searches += candidates.searches;
+      }
+    }
+    return searches;
+  }
+
+  /// Tissue i's candidate margin: `perRadius` times its largest radius
+  /// (found again when its collision mesh changes).
+  double candidateMargin(int i, double perRadius)
+  {
+    const DeformableCollisionMesh& mesh = *tissues[i].collision;
+    auto& [identity, margin] = candidateMargins[i];
+    if (identity != mesh.identity())
+    {
+      identity = mesh.identity();
+      const auto& radii = mesh.radii();
+      margin = radii.empty() ? 0.0 : *std::max_element(radii.begin(), radii.end());
+      margin += mesh.contactDistance();
+    }
+    return perRadius * margin;
+  }
+
+  /// Broad phase of one body pair (counted in the first pass only).
+  bool overlapping(Detection& d, const BoundingBox& x, const BoundingBox& y) const
+  {
+    const bool overlap = !x.isEmpty() && !y.isEmpty() && x.intersects(y);
+    if (d.pass == Pass::QueueMeshPairs)
+    {
+      ++d.statistics.bodyPairs;
+      d.statistics.overlappingBodyPairs += overlap ? 1 : 0;
+    }
+    return overlap;
+  }
+
+  void addContact(Detection& d, const SceneContact& contact, const ContactFeatures& contactFeatures)
+  {
+    d.contacts.push_back(contact);
+    features.push_back(contactFeatures);
+  }
+
+  /// Thick meshes a and b: queued in the first pass, their contacts added
+  /// in the second. `shareGroup`: see ContactFeatures.
+  void meshPair(Detection& d,
+    const ThickMeshView& a,
+    const ThickMeshView& b,
+    SceneBody first,
+    SceneBody second,
+    double stiffness,
+    int shareGroup,
+    contact_kernels::StaticPairCandidates* candidates = nullptr,
+    double margin = 0.0)
+  {
+    if (d.pass == Pass::QueueMeshPairs)
+    {
+      if (meshPairs.size() == meshPairCount)
+      {
+        meshPairs.emplace_back();
+      }
+      MeshPairJob& job = meshPairs[meshPairCount++];
+      job.a = a;
+      job.b = b;
+      job.candidates = candidates;
+      job.margin = margin;
+      return;
+    }
+    for (const FeatureContact& f : meshPairs[d.nextMeshPair++].contacts)
+    {
+      SceneContact c = sceneContactOf(f, first, second);
+      c.stiffness = stiffness;
+      ContactFeatures contactFeatures = featuresOf(f);
+      contactFeatures.shareGroup = shareGroup;
+      addContact(d, c, contactFeatures);
+    }
+  }
+
+  /// The deepest contact of one tool primitive with a mesh's triangle
+  /// `triangle`: the tool is `second` when it touches a tissue (the tissue
+  /// is pushed) and `first` against an obstacle.
+  template <typename PrimitiveContact>
+  void primitiveContact(Detection& d,
+    const PrimitiveContact& contact,
+    const Vector3& toolPoint,
+    const Triangle& triangle,
+    SceneBody toolBody,
+    SceneBody meshBody,
+    bool toolIsFirst,
+    double stiffness)
+  {
+    SceneContact c;
+    ContactFeatures contactFeatures;
+    c.stiffness = stiffness;
+    c.depth = contact.depth;
+    const std::array<int, 3> vertices{ { triangle[0], triangle[1], triangle[2] } };
+    if (toolIsFirst)
+    {
+      c.first = toolBody;
+      c.second = meshBody;
+      c.pointOnFirst = toolPoint;
+      c.pointOnSecond = contact.trianglePoint;
+      c.normal = contact.normal;
+      c.sideOnSecond = contact.side;
+      contactFeatures.verticesOfSecond = vertices;
+      contactFeatures.weightsOfSecond = contact.barycentric;
+    }
+    else
+    {
+      c.first = meshBody;
+      c.second = toolBody;
+      c.pointOnFirst = contact.trianglePoint;
+      c.pointOnSecond = toolPoint;
+      c.normal = -contact.normal;
+      c.sideOnFirst = contact.side;
+      contactFeatures.verticesOfFirst = vertices;
+      contactFeatures.weightsOfFirst = contact.barycentric;
+    }
+    addContact(d, c, contactFeatures);
+  }
+
+  /// A tool's spheres and capsules against a thick mesh (second pass only).
+  void toolPrimitives(Detection& d,
+    const RigidTool& tool,
+    const ThickMeshView& mesh,
+    SceneBody toolBody,
+    SceneBody meshBody,
+    bool toolIsFirst,
+    double stiffness)
+  {
+    if (d.pass == Pass::QueueMeshPairs)
+    {
+      return;
+    }
+    for (const ToolSphere& sphere : tool.spheres())
+    {
+      const auto deepest =
+        contact_kernels::deepestSphereContact(sphere.centre, sphere.radius, mesh);
+      if (deepest.triangle >= 0)
+      {
+        primitiveContact(d,
+          deepest.contact,
+          sphere.centre,
+          (*mesh.triangles)[deepest.triangle],
+          toolBody,
+          meshBody,
+          toolIsFirst,
+          stiffness);
+      }
+    }
+    for (const ToolCapsule& capsule : tool.capsules())
+    {
+      const auto deepest = contact_kernels::deepestCapsuleContact(capsule, mesh);
+      if (deepest.triangle >= 0)
+      {
+        primitiveContact(d,
+          deepest.contact,
+          deepest.contact.segmentPoint,
+          (*mesh.triangles)[deepest.triangle],
+          toolBody,
+          meshBody,
+          toolIsFirst,
+          stiffness);
+      }
+    }
+  }
+
+  /// Tissue i against the tools, the obstacles and the tissues after it.
+  void tissuePairs(Detection& d, int i)
+  {
+    const BoundingBox tissueBox = tissues[i].collision->bvh().bounds();
+    const ThickMeshView tissueView = contact_kernels::viewOf(*tissues[i].collision);
+    const SceneBody tissueBody{ SceneBodyKind::Tissue, i };
+    const CollisionSceneParameters& p = d.parameters;
+    for (int u = 0; u < static_cast<int>(tools.size()); ++u)
+    {
+      const RigidTool& tool = *tools[u];
+      if (!overlapping(d, tissueBox, tool.bounds()))
+      {
+        continue;
+      }
+      const SceneBody toolBody{ SceneBodyKind::Tool, u };
+      toolPrimitives(d, tool, tissueView, toolBody, tissueBody, false, p.toolTissue.stiffness);
+      if (tool.hasMesh())
+      {
+        meshPair(
+          d, tissueView, toolMeshView(tool), tissueBody, toolBody, p.toolTissue.stiffness, 2 * u);
+      }
+    }
+    for (int o = 0; o < static_cast<int>(obstacles.size()); ++o)
+    {
+      if (overlapping(d, tissueBox, obstacles[o]->bvh().bounds()))
+      {
+        meshPair(d,
+          tissueView,
+          contact_kernels::viewOf(*obstacles[o]),
+          tissueBody,
+          SceneBody{ SceneBodyKind::Obstacle, o },
+          p.tissueObstacle.stiffness,
+          -1,
+          &obstacleCandidates[i][o],
+          candidateMargin(i, p.candidateMarginPerRadius));
+      }
+    }
+    for (int j = i + 1; j < static_cast<int>(tissues.size()); ++j)
+    {
+      if (overlapping(d, tissueBox, tissues[j].collision->bvh().bounds()))
+      {
+        meshPair(d,
+          tissueView,
+          contact_kernels::viewOf(*tissues[j].collision),
+          tissueBody,
+          SceneBody{ SceneBodyKind::Tissue, j },
+          p.tissueTissue.stiffness,
+          -1);
+      }
+    }
+  }
+
+  /// Each tool against the obstacles (acts on the tool only).
+  void toolObstaclePairs(Detection& d)
+  {
+    const double stiffness = d.parameters.toolObstacle.stiffness;
+    for (int u = 0; u < static_cast<int>(tools.size()); ++u)
+    {
+      const RigidTool& tool = *tools[u];
+      const BoundingBox toolBox = tool.bounds();
+      const SceneBody toolBody{ SceneBodyKind::Tool, u };
+      for (int o = 0; o < static_cast<int>(obstacles.size()); ++o)
+      {
+        if (!overlapping(d, toolBox, obstacles[o]->bvh().bounds()))
+        {
+          continue;
+        }
+        const ThickMeshView obstacleView = contact_kernels::viewOf(*obstacles[o]);
+        const SceneBody obstacleBody{ SceneBodyKind::Obstacle, o };
+        toolPrimitives(d, tool, obstacleView, toolBody, obstacleBody, true, stiffness);
+        if (tool.hasMesh())
+        {
+          meshPair(
+            d, toolMeshView(tool), obstacleView, toolBody, obstacleBody, stiffness, 2 * u + 1);
+        }
+      }
+    }
+  }
+
+  void bodyPairs(Detection& d)
+  {
+    for (int i = 0; i < static_cast<int>(tissues.size()); ++i)
+    {
+      tissuePairs(d, i);
+    }
+    toolObstaclePairs(d);
+  }
+
+  /// The queued mesh pairs' narrow phases; each job writes only its own
+  /// buffers. Threads pay from a few thousand triangles on; the knee's
+  /// reduced meshes (~500 triangles in all) are faster on one thread.
+  void runMeshPairJobs()
+  {
+    auto runJob = [&](std::size_t k)
+    {
+      MeshPairJob& job = meshPairs[k];
+      job.contacts.clear();
+      if (job.candidates)
+      {
+        contact_kernels::meshStaticContacts(
+          job.a, job.b, job.margin, *job.candidates, job.workspace, job.contacts);
+        return;
+      }
+      contact_kernels::meshMeshContacts(job.a, job.b, job.workspace, job.contacts);
+    };
+    std::size_t triangles = 0;
+    for (std::size_t k = 0; k < meshPairCount; ++k)
+    {
+      triangles += meshPairs[k].a.triangles->size() + meshPairs[k].b.triangles->size();
+    }
+    if (meshPairCount > 1 && triangles >= ParallelNarrowPhaseTriangles)
+    {
+      // One job per task, so that the threads balance jobs of very
+      // different sizes (the femur's 11,752 triangles beside a tool's).
+      tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, meshPairCount, 1),
+        [&](const tbb::blocked_range<std::size_t>& range)
+        {
+          for (std::size_t k = range.begin(); k != range.end(); ++k)
+          {
+            runJob(k);
+          }
+        },
+        tbb::simple_partitioner());
+      return;
+    }
+    for (std::size_t k = 0; k < meshPairCount; ++k)
+    {
+      runJob(k);
+    }
+  }
+
+  /// A tool mesh's contacts share its stiffness by depth (k_i = k d_i / sum d).
+  void shareToolMeshStiffness(std::vector<SceneContact>& contacts)
+  {
+    shareDepthSums.assign(2 * tools.size(), 0.0);
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+    {
+      if (features[k].shareGroup >= 0)
+      {
+        shareDepthSums[features[k].shareGroup] += contacts[k].depth;
+      }
+    }
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+    {
+      const int group = features[k].shareGroup;
+      if (group >= 0)
+      {
+        contacts[k].stiffness *= contacts[k].depth / shareDepthSums[group];
+      }
+    }
+  }
+
+  /// Two tissues: a spring on each side with the other's start-of-step
+  /// velocity, coupled through the cross terms of the joint solve.
+  void addTissueTissueSprings(const SceneContact& c,
+    ContactFeatures& f,
+    const ContactParameters& parameters)
+  {
+    const Vector3 velocityOfFirst =
+      tissueVelocity(c.first.index, f.verticesOfFirst, f.weightsOfFirst);
+    const Vector3 velocityOfSecond =
+      tissueVelocity(c.second.index, f.verticesOfSecond, f.weightsOfSecond);
+    f.springs[0] = addSprings(c.first.index,
+      f.verticesOfFirst,
+      f.weightsOfFirst,
+      c.normal,
+      c.depth,
+      c.stiffness,
+      parameters,
+      velocityOfSecond);
+    f.springs[1] = addSprings(c.second.index,
+      f.verticesOfSecond,
+      f.weightsOfSecond,
+      -c.normal,
+      c.depth,
+      c.stiffness,
+      parameters,
+      velocityOfFirst);
+    addLink(c.first.index,
+      f.verticesOfFirst,
+      f.weightsOfFirst,
+      c.second.index,
+      f.verticesOfSecond,
+      f.weightsOfSecond,
+      c.normal,
+      c.stiffness,
+      parameters.damping);
+  }
+
+  /// Response: springs on the tissues (tool-obstacle contacts give the
+  /// tool's reaction only).
+  void addContactSprings(const std::vector<SceneContact>& contacts,
+    const CollisionSceneParameters& parameters)
+  {
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+    {
+      const SceneContact& c = contacts[k];
+      ContactFeatures& f = features[k];
+      if (c.first.kind != SceneBodyKind::Tissue)
+      {
+        continue;
+      }
+      if (c.second.kind == SceneBodyKind::Tissue)
+      {
+        addTissueTissueSprings(c, f, parameters.tissueTissue);
+        continue;
+      }
+      const bool tool = c.second.kind == SceneBodyKind::Tool;
+      f.springs[0] = addSprings(c.first.index,
+        f.verticesOfFirst,
+        f.weightsOfFirst,
+        c.normal,
+        c.depth,
+        c.stiffness,
+        tool ? parameters.toolTissue : parameters.tissueObstacle,
+        tool ? tools[c.second.index]->velocityAt(c.pointOnSecond) : Vector3::Zero());
+    }
+  }
 };
 
 CollisionScene::CollisionScene()
@@ -386,404 +828,28 @@ void CollisionScene::setParameters(const CollisionSceneParameters& parameters)
                               "and friction >= 0 and a positive slip velocity");
     }
   }
+  if (!(parameters.candidateMarginPerRadius >= 0.0) ||
+      !std::isfinite(parameters.candidateMarginPerRadius))
+  {
+    throw InvalidInputError("collision scene: candidateMarginPerRadius must be finite and >= 0");
+  }
   Parameters = parameters;
 }
 
 void CollisionScene::detectContacts()
 {
   Implementation& in = *Internal;
-  Contacts.clear();
-  in.features.clear();
-  in.links.clear();
-  in.linkEntries.clear();
+  in.startDetection(Contacts);
   Statistics = CollisionStatistics();
-  for (auto& t : in.tissues)
-  {
-    t.collision->update(t.fem->positions());
-  }
-  for (auto& springs : in.solverSprings)
-  {
-    springs.clear();
-  }
-
-  // A contact of a primitive (sphere or capsule) with a thick mesh.
-  auto addPrimitiveContact = [&](SceneBody first,
-                               SceneBody second,
-                               const Vector3& pointOnFirst,
-                               const Vector3& pointOnSecond,
-                               const Vector3& normal,
-                               double depth,
-                               int sideOnFirst,
-                               int sideOnSecond,
-                               double stiffness,
-                               const ContactFeatures& features)
-  {
-    SceneContact c;
-    c.first = first;
-    c.second = second;
-    c.pointOnFirst = pointOnFirst;
-    c.pointOnSecond = pointOnSecond;
-    c.normal = normal;
-    c.depth = depth;
-    c.stiffness = stiffness;
-    c.sideOnFirst = sideOnFirst;
-    c.sideOnSecond = sideOnSecond;
-    Contacts.push_back(c);
-    in.features.push_back(features);
-  };
-  // Thick mesh pairs: the first pass over the body pairs queues them, the
-  // narrow phases run in parallel, the second pass adds their contacts in
-  // the order of the body pairs (the same contacts, in the same order, as
-  // one thread would find).
-  bool collecting = true;
-  std::size_t nextMeshPair = 0;
-  auto addMeshContacts = [&](const ThickMeshView& a,
-                           const ThickMeshView& b,
-                           SceneBody first,
-                           SceneBody second,
-                           double stiffness,
-                           int shareGroup)
-  {
-    if (collecting)
-    {
-      if (in.meshPairs.size() == in.meshPairCount)
-      {
-        in.meshPairs.emplace_back();
-      }
-      Implementation::MeshPairJob& job = in.meshPairs[in.meshPairCount++];
-      job.a = a;
-      job.b = b;
-      return;
-    }
-    for (const FeatureContact& f : in.meshPairs[nextMeshPair++].contacts)
-    {
-      SceneContact c = sceneContactOf(f, first, second);
-      c.stiffness = stiffness;
-      Contacts.push_back(c);
-      ContactFeatures features = featuresOf(f);
-      features.shareGroup = shareGroup;
-      in.features.push_back(features);
-    }
-  };
-  // Primitives of a tool against a thick mesh; the tool is `second` when it
-  // touches a tissue (the tissue is pushed) and `first` against an obstacle.
-  auto addToolPrimitiveContacts = [&](const RigidTool& tool,
-                                    const ThickMeshView& mesh,
-                                    SceneBody toolBody,
-                                    SceneBody meshBody,
-                                    bool toolIsFirst,
-                                    double stiffness)
-  {
-    if (collecting)
-    {
-      return;
-    }
-    for (const ToolSphere& sphere : tool.spheres())
-    {
-      const auto deepest =
-        contact_kernels::deepestSphereContact(sphere.centre, sphere.radius, mesh);
-      if (deepest.triangle < 0)
-      {
-        continue;
-      }
-      const Triangle& tri = (*mesh.triangles)[deepest.triangle];
-      ContactFeatures features;
-      const PointTriangleContact& pc = deepest.contact;
-      if (toolIsFirst)
-      {
-        features.verticesOfSecond = { { tri[0], tri[1], tri[2] } };
-        features.weightsOfSecond = pc.barycentric;
-        addPrimitiveContact(toolBody,
-          meshBody,
-          sphere.centre,
-          pc.trianglePoint,
-          pc.normal,
-          pc.depth,
-          1,
-          pc.side,
-          stiffness,
-          features);
-      }
-      else
-      {
-        features.verticesOfFirst = { { tri[0], tri[1], tri[2] } };
-        features.weightsOfFirst = pc.barycentric;
-        addPrimitiveContact(meshBody,
-          toolBody,
-          pc.trianglePoint,
-          sphere.centre,
-          -pc.normal,
-          pc.depth,
-          pc.side,
-          1,
-          stiffness,
-          features);
-      }
-    }
-    for (const ToolCapsule& capsule : tool.capsules())
-    {
-      const auto deepest = contact_kernels::deepestCapsuleContact(capsule, mesh);
-      if (deepest.triangle < 0)
-      {
-        continue;
-      }
-      const Triangle& tri = (*mesh.triangles)[deepest.triangle];
-      ContactFeatures features;
-      const SegmentTriangleContact& sc = deepest.contact;
-      if (toolIsFirst)
-      {
-        features.verticesOfSecond = { { tri[0], tri[1], tri[2] } };
-        features.weightsOfSecond = sc.barycentric;
-        addPrimitiveContact(toolBody,
-          meshBody,
-          sc.segmentPoint,
-          sc.trianglePoint,
-          sc.normal,
-          sc.depth,
-          1,
-          sc.side,
-          stiffness,
-          features);
-      }
-      else
-      {
-        features.verticesOfFirst = { { tri[0], tri[1], tri[2] } };
-        features.weightsOfFirst = sc.barycentric;
-        addPrimitiveContact(meshBody,
-          toolBody,
-          sc.trianglePoint,
-          sc.segmentPoint,
-          -sc.normal,
-          sc.depth,
-          sc.side,
-          1,
-          stiffness,
-          features);
-      }
-    }
-  };
-
-  // Broad phase: world boxes (inflated by radii and contact distances).
-  const int tissueCount = static_cast<int>(in.tissues.size());
-  const int toolCount = static_cast<int>(in.tools.size());
-  const int obstacleCount = static_cast<int>(in.obstacles.size());
-  auto overlapping = [&](const BoundingBox& x, const BoundingBox& y)
-  {
-    const bool overlap = !x.isEmpty() && !y.isEmpty() && x.intersects(y);
-    if (collecting)
-    {
-      ++Statistics.bodyPairs;
-      Statistics.overlappingBodyPairs += overlap ? 1 : 0;
-    }
-    return overlap;
-  };
-  in.meshPairCount = 0;
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    collecting = pass == 0;
-    if (!collecting)
-    {
-      // Each job writes only its own buffers. Threads pay from a few
-      // thousand triangles on; the knee's reduced meshes (~500 triangles
-      // in all) are faster on one thread.
-      auto runJob = [&](std::size_t k)
-      {
-        Implementation::MeshPairJob& job = in.meshPairs[k];
-        job.contacts.clear();
-        contact_kernels::meshMeshContacts(job.a, job.b, job.workspace, job.contacts);
-      };
-      std::size_t triangles = 0;
-      for (std::size_t k = 0; k < in.meshPairCount; ++k)
-      {
-        triangles += in.meshPairs[k].a.triangles->size() + in.meshPairs[k].b.triangles->size();
-      }
-      if (in.meshPairCount > 1 && triangles >= ParallelNarrowPhaseTriangles)
-      {
-        // One job per task, so that the threads balance jobs of very
-        // different sizes (the femur's 11,752 triangles beside a tool's).
-        tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, in.meshPairCount, 1),
-          [&](const tbb::blocked_range<std::size_t>& range)
-          {
-            for (std::size_t k = range.begin(); k != range.end(); ++k)
-            {
-              runJob(k);
-            }
-          },
-          tbb::simple_partitioner());
-      }
-      else
-      {
-        for (std::size_t k = 0; k < in.meshPairCount; ++k)
-        {
-          runJob(k);
-        }
-      }
-    }
-    for (int i = 0; i < tissueCount; ++i)
-    {
-      const BoundingBox tissueBox = in.tissues[i].collision->bvh().bounds();
-      const ThickMeshView tissueView = contact_kernels::viewOf(*in.tissues[i].collision);
-      const SceneBody tissueBody{ SceneBodyKind::Tissue, i };
-      for (int u = 0; u < toolCount; ++u)
-      {
-        const RigidTool& tool = *in.tools[u];
-        if (!overlapping(tissueBox, tool.bounds()))
-        {
-          continue;
-        }
-        const SceneBody toolBody{ SceneBodyKind::Tool, u };
-        addToolPrimitiveContacts(
-          tool, tissueView, toolBody, tissueBody, false, Parameters.toolTissue.stiffness);
-        if (tool.hasMesh())
-        {
-          addMeshContacts(tissueView,
-            toolMeshView(tool),
-            tissueBody,
-            toolBody,
-            Parameters.toolTissue.stiffness,
-            2 * u);
-        }
-      }
-      for (int o = 0; o < obstacleCount; ++o)
-      {
-        if (overlapping(tissueBox, in.obstacles[o]->bvh().bounds()))
-        {
-          addMeshContacts(tissueView,
-            contact_kernels::viewOf(*in.obstacles[o]),
-            tissueBody,
-            SceneBody{ SceneBodyKind::Obstacle, o },
-            Parameters.tissueObstacle.stiffness,
-            -1);
-        }
-      }
-      for (int j = i + 1; j < tissueCount; ++j)
-      {
-        if (overlapping(tissueBox, in.tissues[j].collision->bvh().bounds()))
-        {
-          addMeshContacts(tissueView,
-            contact_kernels::viewOf(*in.tissues[j].collision),
-            tissueBody,
-            SceneBody{ SceneBodyKind::Tissue, j },
-            Parameters.tissueTissue.stiffness,
-            -1);
-        }
-      }
-    }
-    for (int u = 0; u < toolCount; ++u)
-    {
-      const RigidTool& tool = *in.tools[u];
-      const BoundingBox toolBox = tool.bounds();
-      const SceneBody toolBody{ SceneBodyKind::Tool, u };
-      for (int o = 0; o < obstacleCount; ++o)
-      {
-        if (!overlapping(toolBox, in.obstacles[o]->bvh().bounds()))
-        {
-          continue;
-        }
-        const ThickMeshView obstacleView = contact_kernels::viewOf(*in.obstacles[o]);
-        const SceneBody obstacleBody{ SceneBodyKind::Obstacle, o };
-        addToolPrimitiveContacts(
-          tool, obstacleView, toolBody, obstacleBody, true, Parameters.toolObstacle.stiffness);
-        if (tool.hasMesh())
-        {
-          addMeshContacts(toolMeshView(tool),
-            obstacleView,
-            toolBody,
-            obstacleBody,
-            Parameters.toolObstacle.stiffness,
-            2 * u + 1);
-        }
-      }
-    }
-  }
-
-  // A tool mesh's contacts share its stiffness by depth (k_i = k d_i / sum d).
-  in.shareDepthSums.assign(2 * in.tools.size(), 0.0);
-  for (std::size_t k = 0; k < Contacts.size(); ++k)
-  {
-    if (in.features[k].shareGroup >= 0)
-    {
-      in.shareDepthSums[in.features[k].shareGroup] += Contacts[k].depth;
-    }
-  }
-  for (std::size_t k = 0; k < Contacts.size(); ++k)
-  {
-    const int group = in.features[k].shareGroup;
-    if (group >= 0)
-    {
-      Contacts[k].stiffness *= Contacts[k].depth / in.shareDepthSums[group];
-    }
-  }
-
-  // Response: springs on the tissues.
-  for (std::size_t k = 0; k < Contacts.size(); ++k)
-  {
-    const SceneContact& c = Contacts[k];
-    ContactFeatures& f = in.features[k];
-    if (c.first.kind != SceneBodyKind::Tissue)
-    {
-      continue; // tool-obstacle: the tool's reaction only
-    }
-    switch (c.second.kind)
-    {
-      case SceneBodyKind::Tool:
-        f.springs[0] = in.addSprings(c.first.index,
-          f.verticesOfFirst,
-          f.weightsOfFirst,
-          c.normal,
-          c.depth,
-          c.stiffness,
-          Parameters.toolTissue,
-          in.tools[c.second.index]->velocityAt(c.pointOnSecond));
-        break;
-      case SceneBodyKind::Obstacle:
-        f.springs[0] = in.addSprings(c.first.index,
-          f.verticesOfFirst,
-          f.weightsOfFirst,
-          c.normal,
-          c.depth,
-          c.stiffness,
-          Parameters.tissueObstacle,
-          Vector3::Zero());
-        break;
-      case SceneBodyKind::Tissue:
-      {
-        // Two tissues: a spring on each side with the other's start-of-step
-        // velocity, coupled through the cross terms of the joint solve.
-        const Vector3 velocityOfFirst =
-          in.tissueVelocity(c.first.index, f.verticesOfFirst, f.weightsOfFirst);
-        const Vector3 velocityOfSecond =
-          in.tissueVelocity(c.second.index, f.verticesOfSecond, f.weightsOfSecond);
-        f.springs[0] = in.addSprings(c.first.index,
-          f.verticesOfFirst,
-          f.weightsOfFirst,
-          c.normal,
-          c.depth,
-          c.stiffness,
-          Parameters.tissueTissue,
-          velocityOfSecond);
-        f.springs[1] = in.addSprings(c.second.index,
-          f.verticesOfSecond,
-          f.weightsOfSecond,
-          -c.normal,
-          c.depth,
-          c.stiffness,
-          Parameters.tissueTissue,
-          velocityOfFirst);
-        in.addLink(c.first.index,
-          f.verticesOfFirst,
-          f.weightsOfFirst,
-          c.second.index,
-          f.verticesOfSecond,
-          f.weightsOfSecond,
-          c.normal,
-          c.stiffness,
-          Parameters.tissueTissue.damping);
-        break;
-      }
-    }
-  }
+  Implementation::Detection detection{ Contacts, Parameters, Statistics };
+  in.bodyPairs(detection);
+  const int searchesBefore = in.candidateSearches();
+  in.runMeshPairJobs();
+  Statistics.candidateSearches = in.candidateSearches() - searchesBefore;
+  detection.pass = Implementation::Pass::AddContacts;
+  in.bodyPairs(detection);
+  in.shareToolMeshStiffness(Contacts);
+  in.addContactSprings(Contacts, Parameters);
   for (std::size_t b = 0; b < in.solvers.size(); ++b)
   {
     in.solvers[b]->setContacts(in.solverSprings[b]);

@@ -69,6 +69,14 @@ struct CollisionSceneParameters
   ContactParameters tissueTissue;
   /// Tool against bone: acts on the tool only (what the haptic device shows).
   ContactParameters toolObstacle;
+  /// Temporal coherence against obstacles (they never move): a tissue's
+  /// feature pairs that may touch an obstacle are searched with this
+  /// margin, in multiples of the tissue's largest radius, and reused while
+  /// none of its collision vertices has moved further than the margin.
+  /// The contacts are the same, bit for bit, for any value; it only trades
+  /// the searches against the candidates tested each step. 0: search every
+  /// step (no candidates kept).
+  double candidateMarginPerRadius = 0.25;
 };
 
 enum class SceneBodyKind
@@ -112,6 +120,9 @@ struct CollisionStatistics
   int overlappingBodyPairs = 0; ///< passed the broad phase
   int contacts = 0;
   int springs = 0; ///< EmbeddedContacts given to the solvers
+  /// Tissue-obstacle pairs whose candidates were searched again this step
+  /// (CollisionSceneParameters::candidateMarginPerRadius).
+  int candidateSearches = 0;
   /// Conjugate-gradient iterations of the last joint solve (tissues in
   /// contact with each other), 0 when every solver stepped alone.
   int jointIterations = 0;

@@ -15,7 +15,8 @@ ThickMeshView viewOf(const DeformableCollisionMesh& mesh)
     &mesh.radii(),
     &mesh.bvh(),
     &mesh.vertexNormals(),
-    mesh.contactDistance() };
+    mesh.contactDistance(),
+    mesh.identity() };
 }
 
 ThickMeshView viewOf(const StaticObstacle& obstacle)
@@ -118,60 +119,85 @@ int sideOf(const ThickMeshView& mesh,
   return normal.dot(towardOther) >= 0.0 ? 1 : -1;
 }
 
+/// The contact of vertex v of `from` with the triangle `deepest` of
+/// `onto`. `fromIsA` says which side of the FeatureContact `from` fills.
+void addVertexContact(const ThickMeshView& from,
+  const ThickMeshView& onto,
+  bool fromIsA,
+  int v,
+  const DeepestPointContact& deepest,
+  std::vector<FeatureContact>& contacts)
+{
+  const Vector3& position = (*from.positions)[v];
+  const Triangle& tri = (*onto.triangles)[deepest.triangle];
+  // pointTriangleContact's normal points from the triangle to the vertex.
+  const std::array<int, 3> vertex{ { v, -1, -1 } };
+  const std::array<int, 3> face{ { tri[0], tri[1], tri[2] } };
+  const Vector3 unit(1.0, 0.0, 0.0);
+  const Vector3& n = deepest.contact.normal;
+  FeatureContact c;
+  c.depth = deepest.contact.depth;
+  if (fromIsA)
+  {
+    c.verticesA = vertex;
+    c.weightsA = unit;
+    c.pointA = position;
+    c.verticesB = face;
+    c.weightsB = deepest.contact.barycentric;
+    c.pointB = deepest.contact.trianglePoint;
+    c.normal = n;
+  }
+  else
+  {
+    c.verticesA = face;
+    c.weightsA = deepest.contact.barycentric;
+    c.pointA = deepest.contact.trianglePoint;
+    c.verticesB = vertex;
+    c.weightsB = unit;
+    c.pointB = position;
+    c.normal = -n;
+  }
+  contacts.push_back(c);
+}
+
+/// The box of a vertex's sphere (its radius and the mesh's contact distance).
+BoundingBox sphereBox(const ThickMeshView& mesh, int v, double reach)
+{
+  BoundingBox sphere((*mesh.positions)[v]);
+  sphere.min().array() -= reach;
+  sphere.max().array() += reach;
+  return sphere;
+}
+
+/// Vertex v of `from` against the triangles of `onto` (the deepest).
+void vertexFaceContact(const ThickMeshView& from,
+  const ThickMeshView& onto,
+  bool fromIsA,
+  int v,
+  std::vector<FeatureContact>& contacts)
+{
+  const double radius = (*from.radii)[v] + from.contactDistance;
+  if (!sphereBox(from, v, radius).intersects(onto.bvh->bounds()))
+  {
+    return;
+  }
+  const DeepestPointContact deepest = deepestSphereContact((*from.positions)[v], radius, onto);
+  if (deepest.triangle >= 0)
+  {
+    addVertexContact(from, onto, fromIsA, v, deepest, contacts);
+  }
+}
+
 /// Every vertex of `from` against the triangles of `onto` (deepest each).
-/// `fromIsA` says which side of the FeatureContact `from` fills.
 void vertexFaceContacts(const ThickMeshView& from,
   const ThickMeshView& onto,
   bool fromIsA,
   std::vector<FeatureContact>& contacts)
 {
-  const BoundingBox ontoBounds = onto.bvh->bounds();
-  const auto& positions = *from.positions;
-  const auto& radii = *from.radii;
-  for (std::size_t v = 0; v < positions.size(); ++v)
+  const int count = static_cast<int>(from.positions->size());
+  for (int v = 0; v < count; ++v)
   {
-    const double radius = radii[v] + from.contactDistance;
-    BoundingBox sphere(positions[v]);
-    sphere.min().array() -= radius;
-    sphere.max().array() += radius;
-    if (!sphere.intersects(ontoBounds))
-    {
-      continue;
-    }
-    const DeepestPointContact deepest = deepestSphereContact(positions[v], radius, onto);
-    if (deepest.triangle < 0)
-    {
-      continue;
-    }
-    const Triangle& tri = (*onto.triangles)[deepest.triangle];
-    // pointTriangleContact's normal points from the triangle to the vertex.
-    const std::array<int, 3> vertex{ { static_cast<int>(v), -1, -1 } };
-    const std::array<int, 3> face{ { tri[0], tri[1], tri[2] } };
-    const Vector3 unit(1.0, 0.0, 0.0);
-    const Vector3& n = deepest.contact.normal;
-    FeatureContact c;
-    c.depth = deepest.contact.depth;
-    if (fromIsA)
-    {
-      c.verticesA = vertex;
-      c.weightsA = unit;
-      c.pointA = positions[v];
-      c.verticesB = face;
-      c.weightsB = deepest.contact.barycentric;
-      c.pointB = deepest.contact.trianglePoint;
-      c.normal = n;
-    }
-    else
-    {
-      c.verticesA = face;
-      c.weightsA = deepest.contact.barycentric;
-      c.pointA = deepest.contact.trianglePoint;
-      c.verticesB = vertex;
-      c.weightsB = unit;
-      c.pointB = positions[v];
-      c.normal = -n;
-    }
-    contacts.push_back(c);
+    vertexFaceContact(from, onto, fromIsA, v, contacts);
   }
 }
 
@@ -330,12 +356,12 @@ void boxEdgesOfANearB(const ThickMeshView& a, const ThickMeshView& b, MeshMeshWo
 /// no end of either edge has a vertex contact (workspace.touchingA/B): there
 /// the vertex contacts already hold the surfaces (face to face) and an edge
 /// contact would count the same overlap again. Box tests reject most pairs
-/// before the closest points are computed. Fills workspace.edgeContacts.
+/// before the closest points are computed. Fills workspace.edgeContacts
+/// (in the order the trees visit the pairs).
 void edgeEdgeContacts(const ThickMeshView& a, const ThickMeshView& b, MeshMeshWorkspace& workspace)
 {
   const auto& pb = *b.positions;
   const auto& rb = *b.radii;
-  workspace.edgeContacts.clear();
   boxEdgesOfANearB(a, b, workspace);
   // Each owned edge of B whose ends are free queries A's tree with its box
   // (tighter than its triangle's); each owned, free edge of A in the
@@ -376,23 +402,21 @@ void edgeEdgeContacts(const ThickMeshView& a, const ThickMeshView& b, MeshMeshWo
           });
       }
     });
-  // In a fixed order (by edges), whatever order the trees visit the pairs.
-  auto byEdges = [](
-                   const MeshMeshWorkspace::EdgeContact& x, const MeshMeshWorkspace::EdgeContact& y)
-  { return x.edgeOfA != y.edgeOfA ? x.edgeOfA < y.edgeOfA : x.edgeOfB < y.edgeOfB; };
-  std::sort(workspace.edgeContacts.begin(), workspace.edgeContacts.end(), byEdges);
 }
 
-} // namespace
-
-void meshMeshContacts(const ThickMeshView& a,
+/// What both narrow phases share once the vertex-face contacts are in
+/// contacts[firstContact, end): the edge-edge contacts of the edges with no
+/// vertex contact at an end (found by `edgeSearch`, which fills
+/// workspace.edgeContacts) in a fixed order (by edges, whatever order the
+/// search met them), then each contact's sides.
+template <typename EdgeSearch>
+void finishContacts(const ThickMeshView& a,
   const ThickMeshView& b,
+  std::size_t firstContact,
   MeshMeshWorkspace& workspace,
-  std::vector<FeatureContact>& contacts)
+  std::vector<FeatureContact>& contacts,
+  EdgeSearch&& edgeSearch)
 {
-  const std::size_t firstContact = contacts.size();
-  vertexFaceContacts(a, b, true, contacts);
-  vertexFaceContacts(b, a, false, contacts);
   const std::size_t vertexContactsEnd = contacts.size();
   workspace.touchingA.resize(a.positions->size(), 0);
   workspace.touchingB.resize(b.positions->size(), 0);
@@ -412,8 +436,13 @@ void meshMeshContacts(const ThickMeshView& a,
     }
   };
   markVertices(1);
-  edgeEdgeContacts(a, b, workspace);
+  workspace.edgeContacts.clear();
+  edgeSearch();
   markVertices(0);
+  auto byEdges = [](
+                   const MeshMeshWorkspace::EdgeContact& x, const MeshMeshWorkspace::EdgeContact& y)
+  { return x.edgeOfA != y.edgeOfA ? x.edgeOfA < y.edgeOfA : x.edgeOfB < y.edgeOfB; };
+  std::sort(workspace.edgeContacts.begin(), workspace.edgeContacts.end(), byEdges);
   for (const MeshMeshWorkspace::EdgeContact& edge : workspace.edgeContacts)
   {
     contacts.push_back(edge.contact);
@@ -424,6 +453,293 @@ void meshMeshContacts(const ThickMeshView& a,
     c.sideOnA = sideOf(a, c.verticesA, c.weightsA, -c.normal);
     c.sideOnB = sideOf(b, c.verticesB, c.weightsB, c.normal);
   }
+}
+
+// --- Candidates of a deformable mesh A against a static mesh B. While no
+// vertex of A has moved more than the margin m, a feature pair further
+// apart than its reach plus m when found cannot touch (distances between
+// a moving and a fixed feature change by at most m), and every box of A
+// lies within its box when found, inflated by m. The search inflates by a
+// little more than m so that rounding never drops a pair that may touch;
+// the contacts are then computed exactly as meshMeshContacts does, with
+// the same box tests, so they come out bit for bit the same.
+
+/// Inflation of the search beyond the margin (relative).
+constexpr double SearchSlack = 1.001;
+
+BoundingBox inflated(BoundingBox box, double by)
+{
+  box.min().array() -= by;
+  box.max().array() += by;
+  return box;
+}
+
+double largestRadius(const std::vector<double>& radii, const Triangle& t)
+{
+  return std::max({ radii[t[0]], radii[t[1]], radii[t[2]] });
+}
+
+/// B's triangles that vertex v of A may reach, in the order B's tree
+/// visits them (so that the deepest keeps its tie-breaking).
+void findVertexTriangles(const ThickMeshView& a,
+  const ThickMeshView& b,
+  int v,
+  double reach,
+  StaticPairCandidates& candidates)
+{
+  const Vector3& x = (*a.positions)[v];
+  const auto& pb = *b.positions;
+  const auto& rb = *b.radii;
+  const double radius = (*a.radii)[v] + a.contactDistance;
+  b.bvh->forEachOverlap(sphereBox(a, v, radius + reach),
+    [&](int t)
+    {
+      const Triangle& tri = (*b.triangles)[t];
+      const double distance =
+        pointTriangleContact(x, 0.0, pb[tri[0]], pb[tri[1]], pb[tri[2]], 0.0, 0.0, 0.0, 0.0)
+          .distance;
+      if (distance < radius + b.contactDistance + largestRadius(rb, tri) + reach)
+      {
+        candidates.vertexTriangles.push_back(t);
+        candidates.vertexTriangleBoxes.push_back(
+          TriangleBvh::triangleBox(pb, tri, rb, b.bvh->contactDistance()));
+      }
+    });
+}
+
+/// Owned edge pairs of A's triangles near B's edge (b0, b1) of triangle tb.
+void findEdgePairsOf(const ThickMeshView& a,
+  const ThickMeshView& b,
+  int b0,
+  int b1,
+  int tb,
+  double reach,
+  StaticPairCandidates& candidates)
+{
+  const auto& pa = *a.positions;
+  const auto& ra = *a.radii;
+  const auto& pb = *b.positions;
+  const auto& rb = *b.radii;
+  const double reachB = std::max(rb[b0], rb[b1]) + b.contactDistance;
+  const BoundingBox boxB = edgeBox(pb[b0], pb[b1], reachB);
+  const BoundingBox query = inflated(boxB, reach);
+  a.bvh->forEachOverlap(query,
+    [&](int ta)
+    {
+      const std::uint8_t ownedA = a.bvh->ownedEdges(ta);
+      const Triangle& triA = (*a.triangles)[ta];
+      for (int i = 0; i < 3; ++i)
+      {
+        const int a0 = triA[i];
+        const int a1 = triA[(i + 1) % 3];
+        const double reachA = std::max(ra[a0], ra[a1]) + a.contactDistance;
+        if (!(ownedA & (1u << i)) || !edgeBox(pa[a0], pa[a1], reachA).intersects(query) ||
+            !(closestPointsBetweenSegments(pa[a0], pa[a1], pb[b0], pb[b1]).distance <
+              reachA + reachB + reach))
+        {
+          continue;
+        }
+        candidates.edgePairs.push_back({ a0, a1, ta, b0, b1, tb, boxB });
+      }
+    });
+}
+
+/// Searches every candidate again around A's current positions.
+void findCandidates(const ThickMeshView& a,
+  const ThickMeshView& b,
+  double margin,
+  StaticPairCandidates& candidates)
+{
+  const double reach = SearchSlack * margin;
+  candidates.identityOfA = a.identity;
+  candidates.treeOfB = b.bvh;
+  candidates.margin = margin;
+  candidates.positionsOfA = *a.positions;
+  ++candidates.searches;
+  const int countA = static_cast<int>(a.positions->size());
+  candidates.vertexStart.assign(1, 0);
+  candidates.vertexTriangles.clear();
+  candidates.vertexTriangleBoxes.clear();
+  for (int v = 0; v < countA; ++v)
+  {
+    findVertexTriangles(a, b, v, reach, candidates);
+    candidates.vertexStart.push_back(static_cast<int>(candidates.vertexTriangles.size()));
+  }
+  candidates.verticesOfB.clear();
+  const BoundingBox boundsOfA = inflated(a.bvh->bounds(), reach);
+  const int countB = static_cast<int>(b.positions->size());
+  for (int w = 0; w < countB; ++w)
+  {
+    const BoundingBox box = sphereBox(b, w, (*b.radii)[w] + b.contactDistance + reach);
+    bool near = false;
+    if (box.intersects(boundsOfA))
+    {
+      a.bvh->forEachOverlap(box, [&](int) { near = true; });
+    }
+    if (near)
+    {
+      candidates.verticesOfB.push_back(w);
+    }
+  }
+  candidates.edgePairs.clear();
+  b.bvh->forEachOverlap(boundsOfA,
+    [&](int tb)
+    {
+      const Triangle& triB = (*b.triangles)[tb];
+      for (int j = 0; j < 3; ++j)
+      {
+        if (b.bvh->ownedEdges(tb) & (1u << j))
+        {
+          findEdgePairsOf(a, b, triB[j], triB[(j + 1) % 3], tb, reach, candidates);
+        }
+      }
+    });
+}
+
+/// Whether the candidates still hold: the same meshes, no vertex of A
+/// further than the margin from where it was.
+bool candidatesHold(const ThickMeshView& a,
+  const ThickMeshView& b,
+  double margin,
+  const StaticPairCandidates& candidates)
+{
+  if (a.identity == 0 || candidates.identityOfA != a.identity || candidates.treeOfB != b.bvh ||
+      candidates.margin != margin || candidates.positionsOfA.size() != a.positions->size())
+  {
+    return false;
+  }
+  const double squaredMargin = margin * margin;
+  const auto& positions = *a.positions;
+  for (std::size_t v = 0; v < positions.size(); ++v)
+  {
+    if ((positions[v] - candidates.positionsOfA[v]).squaredNorm() > squaredMargin)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Vertex v of A against its candidate triangles of B: what
+/// deepestSphereContact finds in B's tree (same box test, same order).
+void vertexCandidateContact(const ThickMeshView& a,
+  const ThickMeshView& b,
+  int v,
+  const StaticPairCandidates& candidates,
+  std::vector<FeatureContact>& contacts)
+{
+  const int first = candidates.vertexStart[v];
+  const int end = candidates.vertexStart[v + 1];
+  if (first == end)
+  {
+    return;
+  }
+  const Vector3& x = (*a.positions)[v];
+  const double radius = (*a.radii)[v] + a.contactDistance;
+  const double thickness = radius + b.contactDistance;
+  const BoundingBox query = sphereBox(a, v, radius);
+  const auto& pb = *b.positions;
+  const auto& rb = *b.radii;
+  DeepestPointContact deepest;
+  for (int k = first; k < end; ++k)
+  {
+    if (!candidates.vertexTriangleBoxes[k].intersects(query))
+    {
+      continue;
+    }
+    const int t = candidates.vertexTriangles[k];
+    const Triangle& tri = (*b.triangles)[t];
+    const PointTriangleContact c = pointTriangleContact(
+      x, thickness, pb[tri[0]], pb[tri[1]], pb[tri[2]], rb[tri[0]], rb[tri[1]], rb[tri[2]], 0.0);
+    if (c.penetrating() && (deepest.triangle < 0 || c.depth > deepest.contact.depth))
+    {
+      deepest.contact = c;
+      deepest.triangle = t;
+    }
+  }
+  if (deepest.triangle >= 0)
+  {
+    addVertexContact(a, b, true, v, deepest, contacts);
+  }
+}
+
+/// The candidate edge pairs whose ends are free and whose boxes overlap.
+void edgeCandidateContacts(const ThickMeshView& a,
+  const ThickMeshView& b,
+  const StaticPairCandidates& candidates,
+  MeshMeshWorkspace& workspace)
+{
+  const auto& pa = *a.positions;
+  const auto& ra = *a.radii;
+  for (const StaticPairCandidates::EdgePair& e : candidates.edgePairs)
+  {
+    if (workspace.touchingA[e.a0] || workspace.touchingA[e.a1] || workspace.touchingB[e.b0] ||
+        workspace.touchingB[e.b1])
+    {
+      continue;
+    }
+    const double reachA = std::max(ra[e.a0], ra[e.a1]) + a.contactDistance;
+    if (edgeBox(pa[e.a0], pa[e.a1], reachA).intersects(e.boxB))
+    {
+      testEdgePair(a,
+        b,
+        e.a0,
+        e.a1,
+        e.b0,
+        e.b1,
+        (*a.triangles)[e.triangleA],
+        (*b.triangles)[e.triangleB],
+        workspace);
+    }
+  }
+}
+
+} // namespace
+
+void meshMeshContacts(const ThickMeshView& a,
+  const ThickMeshView& b,
+  MeshMeshWorkspace& workspace,
+  std::vector<FeatureContact>& contacts)
+{
+  const std::size_t firstContact = contacts.size();
+  vertexFaceContacts(a, b, true, contacts);
+  vertexFaceContacts(b, a, false, contacts);
+  finishContacts(
+    a, b, firstContact, workspace, contacts, [&] { edgeEdgeContacts(a, b, workspace); });
+}
+
+void meshStaticContacts(const ThickMeshView& a,
+  const ThickMeshView& b,
+  double margin,
+  StaticPairCandidates& candidates,
+  MeshMeshWorkspace& workspace,
+  std::vector<FeatureContact>& contacts)
+{
+  if (!(margin > 0.0) || a.identity == 0)
+  {
+    meshMeshContacts(a, b, workspace, contacts);
+    return;
+  }
+  if (!candidatesHold(a, b, margin, candidates))
+  {
+    findCandidates(a, b, margin, candidates);
+  }
+  const std::size_t firstContact = contacts.size();
+  const int countA = static_cast<int>(a.positions->size());
+  for (int v = 0; v < countA; ++v)
+  {
+    vertexCandidateContact(a, b, v, candidates, contacts);
+  }
+  for (const int w : candidates.verticesOfB)
+  {
+    vertexFaceContact(b, a, false, w, contacts);
+  }
+  finishContacts(a,
+    b,
+    firstContact,
+    workspace,
+    contacts,
+    [&] { edgeCandidateContacts(a, b, candidates, workspace); });
 }
 
 } // namespace contact_kernels

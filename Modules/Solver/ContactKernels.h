@@ -33,6 +33,9 @@ struct ThickMeshView
   /// are inflated by it): contacts start when the thick surfaces are this
   /// close, and the response holds them this far apart.
   double contactDistance = 0.0;
+  /// Same value while the mesh keeps its triangles and radii
+  /// (DeformableCollisionMesh::identity); 0: unknown (nothing is cached).
+  std::uint64_t identity = 0;
 };
 
 ThickMeshView viewOf(const DeformableCollisionMesh& mesh);
@@ -102,6 +105,48 @@ struct MeshMeshWorkspace
 /// Appends to `contacts`.
 void meshMeshContacts(const ThickMeshView& a,
   const ThickMeshView& b,
+  MeshMeshWorkspace& workspace,
+  std::vector<FeatureContact>& contacts);
+
+/// The features of a deformable mesh A that may touch a static mesh B
+/// while no vertex of A moves more than `margin` from where it was when
+/// they were found (temporal coherence: a tissue resting on a bone moves
+/// little from step to step). Kept by meshStaticContacts.
+struct StaticPairCandidates
+{
+  std::uint64_t identityOfA = 0; ///< 0: nothing found yet
+  const TriangleBvh* treeOfB = nullptr;
+  double margin = 0.0;
+  std::vector<Vector3> positionsOfA; ///< when found
+  /// B's triangles near each vertex of A: vertexTriangles[vertexStart[v],
+  /// vertexStart[v + 1]), in the order B's tree visits them, each with its
+  /// (fixed) inflated box.
+  std::vector<int> vertexStart;
+  std::vector<int> vertexTriangles;
+  std::vector<BoundingBox> vertexTriangleBoxes;
+  /// B's vertices near A, ascending.
+  std::vector<int> verticesOfB;
+  /// Owned edges of A and B (as their owning triangles orient them) that
+  /// may come within reach, with B's edge box.
+  struct EdgePair
+  {
+    int a0 = 0, a1 = 0, triangleA = 0;
+    int b0 = 0, b1 = 0, triangleB = 0;
+    BoundingBox boxB;
+  };
+  std::vector<EdgePair> edgePairs;
+  int searches = 0; ///< times the candidates were found (for tests, benchmarks)
+};
+
+/// meshMeshContacts(a, b, ...) for a static `b` (an obstacle: positions,
+/// radii and tree never change), the same contacts in the same order,
+/// bit for bit; the candidate features are searched again only when a
+/// vertex of `a` has moved more than `margin` since the last search, or
+/// `a` changed (another identity; an identity of 0 searches every call).
+void meshStaticContacts(const ThickMeshView& a,
+  const ThickMeshView& b,
+  double margin,
+  StaticPairCandidates& candidates,
   MeshMeshWorkspace& workspace,
   std::vector<FeatureContact>& contacts);
 

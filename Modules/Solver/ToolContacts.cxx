@@ -3,6 +3,7 @@
 #include "ContactKernels.h"
 #include "ThinTissueError.h"
 
+#include <atomic>
 #include <string>
 #include <utility>
 
@@ -11,6 +12,9 @@ namespace thintissue
 
 namespace
 {
+
+/// Identities of the collision meshes built so far (never 0).
+std::atomic<std::uint64_t> LastIdentity{ 0 };
 
 std::vector<double> radiiOf(const TriangleMesh& collision)
 {
@@ -38,6 +42,7 @@ DeformableCollisionMesh::DeformableCollisionMesh(const TriangleMesh& collision,
   , Embedding(std::move(embedding))
   , Positions(collision.positions)
   , ContactDistance(contactDistance)
+  , Identity(++LastIdentity)
 {
   if (!(contactDistance >= 0.0))
   {

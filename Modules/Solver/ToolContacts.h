@@ -11,6 +11,7 @@
 #include "ThinTissueSolverModule.h"
 #include "TriangleBvh.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace thintissue
@@ -68,6 +69,10 @@ public:
   const HexahedralEmbedding& embedding() const { return Embedding; }
   const TriangleBvh& bvh() const { return Bvh; }
   double contactDistance() const { return ContactDistance; }
+  /// Made anew with each mesh built (copies keep it): what a contact cache
+  /// keyed on it found stays valid while the identity does (same
+  /// triangles, radii and contact distance).
+  std::uint64_t identity() const { return Identity; }
 
 private:
   std::vector<Triangle> Triangles;
@@ -77,6 +82,7 @@ private:
   TriangleBvh Bvh;
   std::vector<Vector3> VertexNormals;
   double ContactDistance = 0.0;
+  std::uint64_t Identity = 0;
 
   void updateVertexNormals();
 };

@@ -541,59 +541,90 @@ TEST(CollisionScene, InvalidInputIsRejected)
   EXPECT_THROW(s.scene.addTissue(s.fem, foreign), InvalidInputError);
 }
 
-TEST(CollisionScene, MeniscusPressedOntoTheTibiaTouchesWithItsLowerSurface)
+namespace
 {
-  // Table 6-2's scenario with the knee models: the hook presses the
-  // meniscus's body down onto the tibial plateau; the contacts on its lower
-  // surface rise.
-  const MeniscusModel meniscus = makeMeniscus();
-  const KneeSurroundings knee = makeKneeSurroundings();
-  LinearMaterial material; // thesis 4.5
-  material.youngModulus = 150.0;
-  material.poissonRatio = 0.49;
-  material.density = 1.1e-9;
-  CorotationalHexFem fem(meniscus.simulation, material, stepOf(0.001));
-  DeformableCollisionMesh collision(meniscus.collision, meniscus.simulation);
-  const StaticObstacle tibia(knee.tibia.collision);
-  const StaticObstacle cartilage(knee.tibialCartilage.visual);
-  RigidTool hook("probe hook");
-  const SurgicalInstrumentModel model = makeSurgicalInstrument(SurgicalInstrumentType::ProbeHook);
-  for (const auto& segment : model.centreLine)
-  {
-    hook.addCapsule(segment.end, segment.start, segment.radius); // tip -> handle
-  }
+/// Table 6-2's scenario with the knee models: the meniscus on the tibia
+/// and its cartilage (obstacles), the probe hook above its body.
+struct MeniscusOnTheKnee
+{
+  MeniscusModel meniscus = makeMeniscus();
+  KneeSurroundings knee = makeKneeSurroundings();
+  CorotationalHexFem fem;
+  DeformableCollisionMesh collision;
+  StaticObstacle tibia;
+  StaticObstacle cartilage;
+  RigidTool hook{ "probe hook" };
   CollisionScene scene;
-  scene.addTissue(fem, collision);
-  scene.addTool(hook);
-  scene.addObstacle(tibia);
-  scene.addObstacle(cartilage);
-
-  const ParametricSolid solid = makeMeniscusSolid(MeniscusParameters{});
-  const Vector3 top = solid.point(ParameterPoint(0.5, 0.5, 1.0));
   RigidPose pose;
-  pose.rotation = Eigen::Quaterniond::FromTwoVectors(Vector3::UnitZ(), Vector3(-0.3, 0.6, 0.75))
-                    .toRotationMatrix();
-  pose.translation = top + Vector3(0.0, 0.0, 1.0); // above the upper surface
-  hook.moveTo(pose, 0.001);
-  for (int k = 0; k < 20; ++k)
+
+  explicit MeniscusOnTheKnee(double candidateMarginPerRadius = 0.25)
+    : fem(meniscus.simulation, material(), stepOf(0.001))
+    , collision(meniscus.collision, meniscus.simulation)
+    , tibia(knee.tibia.collision)
+    , cartilage(knee.tibialCartilage.visual)
   {
-    ASSERT_TRUE(scene.step().ok);
-  }
-  const int lowerBefore = scene.contactCountOnSide(0, -1);
-  for (int k = 0; k < 400; ++k)
-  {
-    if (k < 200)
+    const SurgicalInstrumentModel model = makeSurgicalInstrument(SurgicalInstrumentType::ProbeHook);
+    for (const auto& segment : model.centreLine)
     {
-      pose.translation.z() -= 0.01; // 2 mm down: 1 mm into the meniscus
+      hook.addCapsule(segment.end, segment.start, segment.radius); // tip -> handle
+    }
+    CollisionSceneParameters parameters;
+    parameters.candidateMarginPerRadius = candidateMarginPerRadius;
+    scene.setParameters(parameters);
+    scene.addTissue(fem, collision);
+    scene.addTool(hook);
+    scene.addObstacle(tibia);
+    scene.addObstacle(cartilage);
+    const ParametricSolid solid = makeMeniscusSolid(MeniscusParameters{});
+    const Vector3 top = solid.point(ParameterPoint(0.5, 0.5, 1.0));
+    pose.rotation = Eigen::Quaterniond::FromTwoVectors(Vector3::UnitZ(), Vector3(-0.3, 0.6, 0.75))
+                      .toRotationMatrix();
+    pose.translation = top + Vector3(0.0, 0.0, 1.0); // above the upper surface
+    hook.moveTo(pose, 0.001);
+  }
+
+  static LinearMaterial material()
+  {
+    LinearMaterial m; // thesis 4.5
+    m.youngModulus = 150.0;
+    m.poissonRatio = 0.49;
+    m.density = 1.1e-9;
+    return m;
+  }
+
+  /// Step k of the press: 20 steps resting, 200 steps 2 mm down (1 mm into
+  /// the meniscus), then held.
+  bool step(int k)
+  {
+    if (k >= 20 && k < 220)
+    {
+      pose.translation.z() -= 0.01;
     }
     hook.moveTo(pose, 0.001);
-    ASSERT_TRUE(scene.step().ok);
+    return scene.step().ok;
   }
-  const int lowerAfter = scene.contactCountOnSide(0, -1);
+};
+} // namespace
+
+TEST(CollisionScene, MeniscusPressedOntoTheTibiaTouchesWithItsLowerSurface)
+{
+  // The hook presses the meniscus's body down onto the tibial plateau; the
+  // contacts on its lower surface rise.
+  MeniscusOnTheKnee knee;
+  for (int k = 0; k < 20; ++k)
+  {
+    ASSERT_TRUE(knee.step(k));
+  }
+  const int lowerBefore = knee.scene.contactCountOnSide(0, -1);
+  for (int k = 20; k < 420; ++k)
+  {
+    ASSERT_TRUE(knee.step(k));
+  }
+  const int lowerAfter = knee.scene.contactCountOnSide(0, -1);
   EXPECT_GT(lowerAfter, lowerBefore);
-  EXPECT_GT(hook.force().z(), 0.0); // the meniscus pushes the hook up
+  EXPECT_GT(knee.hook.force().z(), 0.0); // the meniscus pushes the hook up
   int upperHook = 0;
-  for (const SceneContact& c : scene.contacts())
+  for (const SceneContact& c : knee.scene.contacts())
   {
     if (c.second.kind == SceneBodyKind::Tool)
     {
@@ -608,5 +639,39 @@ TEST(CollisionScene, MeniscusPressedOntoTheTibiaTouchesWithItsLowerSurface)
   }
   EXPECT_GE(upperHook, 1);
   std::cout << "lower-surface contacts before " << lowerBefore << ", after " << lowerAfter
-            << ", hook force " << hook.force().transpose() << "\n";
+            << ", hook force " << knee.hook.force().transpose() << "\n";
+}
+
+TEST(CollisionScene, ObstacleCandidatesKeptBetweenStepsChangeNoBit)
+{
+  // The press with the obstacles' candidates searched every step (margin
+  // 0) and kept between steps (the default): the same contacts and node
+  // positions, bit for bit, at every step, with far fewer searches.
+  MeniscusOnTheKnee everyStep(0.0), kept;
+  int searches = 0, contacts = 0;
+  const int steps = 320;
+  for (int k = 0; k < steps; ++k)
+  {
+    ASSERT_TRUE(everyStep.step(k));
+    ASSERT_TRUE(kept.step(k));
+    EXPECT_EQ(everyStep.scene.statistics().candidateSearches, 0);
+    searches += kept.scene.statistics().candidateSearches;
+    ASSERT_EQ(everyStep.scene.contacts().size(), kept.scene.contacts().size()) << "step " << k;
+    for (std::size_t c = 0; c < kept.scene.contacts().size(); ++c)
+    {
+      const SceneContact& e = everyStep.scene.contacts()[c];
+      const SceneContact& f = kept.scene.contacts()[c];
+      ASSERT_TRUE(e.first == f.first && e.second == f.second && e.depth == f.depth &&
+                  e.normal == f.normal && e.pointOnFirst == f.pointOnFirst && e.force == f.force)
+        << "step " << k << ", contact " << c;
+    }
+    ASSERT_EQ(everyStep.fem.positions(), kept.fem.positions()) << "step " << k;
+    contacts += static_cast<int>(kept.scene.contacts().size());
+  }
+  EXPECT_EQ(everyStep.hook.force(), kept.hook.force());
+  EXPECT_GT(contacts, steps); // it touched the plateau (and the hook)
+  EXPECT_GE(searches, 2);     // one per obstacle at the start, more as it moved
+  EXPECT_LT(searches, steps / 4);
+  std::cout << searches << " candidate searches in " << steps << " steps, " << contacts
+            << " contacts\n";
 }

@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <iostream>
+#include <random>
+
 using namespace thintissue;
 using namespace thintissue::contact_kernels;
 
@@ -88,4 +92,113 @@ TEST(ContactKernels, VertexFaceContactsBothWaysDeepestPerVertex)
   ASSERT_EQ(contacts.size(), 1u);
   EXPECT_EQ(contacts[0].verticesB[0], 0);
   EXPECT_TRUE(contacts[0].normal.isApprox(Vector3(0, 0, -1), 1e-12)); // from the tip to the flat
+}
+
+namespace
+{
+/// A grid of n x n vertices, `spacing` apart, turned by `angle` about z,
+/// its heights from `height(x, y)`.
+template <typename Height>
+ThickMesh grid(int n, double spacing, double angle, double radius, Height height)
+{
+  std::vector<Vector3> positions;
+  std::vector<Triangle> triangles;
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const double u = (i - 0.5 * (n - 1)) * spacing, v = (j - 0.5 * (n - 1)) * spacing;
+      const double x = c * u - s * v, y = s * u + c * v;
+      positions.emplace_back(x, y, height(x, y));
+    }
+  }
+  for (int j = 0; j + 1 < n; ++j)
+  {
+    for (int i = 0; i + 1 < n; ++i)
+    {
+      const int k = j * n + i;
+      triangles.push_back({ k, k + 1, k + n + 1 });
+      triangles.push_back({ k, k + n + 1, k + n });
+    }
+  }
+  return ThickMesh(std::move(positions), std::move(triangles), radius);
+}
+
+void expectSameContacts(const std::vector<FeatureContact>& expected,
+  const std::vector<FeatureContact>& found,
+  int step)
+{
+  ASSERT_EQ(expected.size(), found.size()) << "step " << step;
+  for (std::size_t k = 0; k < expected.size(); ++k)
+  {
+    const FeatureContact& e = expected[k];
+    const FeatureContact& f = found[k];
+    // Bit for bit: the same features, points, normals and depths.
+    EXPECT_TRUE(e.verticesA == f.verticesA && e.verticesB == f.verticesB &&
+                e.weightsA == f.weightsA && e.weightsB == f.weightsB && e.pointA == f.pointA &&
+                e.pointB == f.pointB && e.normal == f.normal && e.depth == f.depth &&
+                e.sideOnA == f.sideOnA && e.sideOnB == f.sideOnB)
+      << "step " << step << ", contact " << k;
+  }
+}
+} // namespace
+
+TEST(ContactKernels, StaticCandidatesGiveTheSameContactsBitForBit)
+{
+  // A coarse thick sheet (A) wandering over a bumpy fixed one (B) turned
+  // by 30 degrees, each vertex on its own random walk: the candidates kept
+  // between searches must give exactly what the full search gives, every
+  // kind of contact included, with far fewer searches than steps.
+  const ThickMesh obstacle = grid(9,
+    2.5,
+    0.52,
+    0.4,
+    [](double x, double y) { return 0.6 * std::sin(0.9 * x) * std::cos(0.7 * y); });
+  ThickMesh tissue = grid(7, 2.0, 0.0, 0.3, [](double, double) { return 0.9; });
+  const double margin = 0.25;
+  StaticPairCandidates candidates;
+  MeshMeshWorkspace fullWorkspace, cachedWorkspace;
+  std::vector<FeatureContact> full, cached;
+  std::mt19937 random(7);
+  std::normal_distribution<double> jitter(0.0, 0.02);
+  int vertexOnFace = 0, faceOnVertex = 0, edgeEdge = 0;
+  const int steps = 600;
+  std::uint64_t identity = 1;
+  for (int step = 0; step < steps; ++step)
+  {
+    for (Vector3& p : tissue.positions)
+    {
+      // A slow drift across and down, and noise.
+      p += Vector3(0.004, 0.002, step < 300 ? -0.002 : 0.002) +
+           Vector3(jitter(random), jitter(random), jitter(random));
+    }
+    if (step == 400)
+    {
+      tissue.radii.assign(tissue.positions.size(), 0.35); // another mesh
+      ++identity;
+    }
+    tissue.bvh.build(tissue.positions, tissue.triangles, tissue.radii, 0.0);
+    ThickMeshView a = tissue.view();
+    a.identity = identity;
+    full.clear();
+    cached.clear();
+    meshMeshContacts(a, obstacle.view(), fullWorkspace, full);
+    meshStaticContacts(a, obstacle.view(), margin, candidates, cachedWorkspace, cached);
+    expectSameContacts(full, cached, step);
+    for (const FeatureContact& c : full)
+    {
+      vertexOnFace += c.verticesA[1] < 0 ? 1 : 0;
+      faceOnVertex += c.verticesB[1] < 0 ? 1 : 0;
+      edgeEdge += c.verticesA[1] >= 0 && c.verticesA[2] < 0 && c.verticesB[2] < 0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(vertexOnFace, 0);
+  EXPECT_GT(faceOnVertex, 0);
+  EXPECT_GT(edgeEdge, 0);
+  EXPECT_LT(candidates.searches, steps / 4);
+  EXPECT_GE(candidates.searches, 3); // moved beyond the margin, and the new mesh
+  std::cout << "contacts: " << vertexOnFace << " vertex-face, " << faceOnVertex << " face-vertex, "
+            << edgeEdge << " edge-edge; " << candidates.searches << " searches in " << steps
+            << " steps\n";
 }
