@@ -87,6 +87,7 @@ void replayScenario(const std::string& recordingPath,
   std::vector<double> steps;
   double slowestCut = 0.0;
   CutSteps cuts;
+  int searches = 0;
   const auto start = std::chrono::steady_clock::now();
   while (scene.time() + 0.5 * scenario.timeStep < duration)
   {
@@ -96,6 +97,7 @@ void replayScenario(const std::string& recordingPath,
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - before).count();
     steps.push_back(seconds);
+    searches += scene.contacts().statistics().candidateSearches;
     if (scene.topologyVersion() != version && scene.metrics().operations != cuts.count)
     {
       slowestCut = std::max(slowestCut, seconds);
@@ -117,6 +119,12 @@ void replayScenario(const std::string& recordingPath,
     cuts.report(name, reporter);
   }
   reporter.report(name, "replay speed, rendering off", duration / wall, "x real time");
+  // Temporal coherence (CollisionSceneParameters::candidateMarginPerRadius):
+  // how often the tissue moved beyond the margin.
+  reporter.report(name,
+    "obstacle candidate searches per 100 steps",
+    100.0 * searches / std::max<std::size_t>(1, steps.size()),
+    "searches");
 }
 
 /// The simulator window's drawing (arthroscope view and overview) at
@@ -186,6 +194,9 @@ THINTISSUE_BENCHMARK_SUITE(simulatorSuite,
 (const BenchmarkContext& context, BenchmarkReporter& reporter)
 {
   const std::string recordings = std::string(THINTISSUE_DATA_DIR) + "/Recordings/";
+  // THINTISSUE_BENCH_RECORDINGS=name,name,...: only those (a profiler's run).
+  const char* only = std::getenv("THINTISSUE_BENCH_RECORDINGS");
+  const std::string chosen = only ? "," + std::string(only) + "," : std::string();
   for (const char* name : { "meniscus-examination",
          "meniscectomy-punch",
          "shaver-removal",
@@ -195,8 +206,11 @@ THINTISSUE_BENCHMARK_SUITE(simulatorSuite,
          "pcl-firmness",
          "cartilage-palpation" })
   {
-    replayScenario(recordings + name + ".json", context, reporter);
+    if (chosen.empty() || chosen.find("," + std::string(name) + ",") != std::string::npos)
+      replayScenario(recordings + name + ".json", context, reporter);
   }
+  if (!chosen.empty())
+    return;
   // The window's anti-aliasing, and the multisampling it replaced (costly
   // on a software renderer).
   frameRate(recordings + "meniscus-examination.json", 0, context, reporter);

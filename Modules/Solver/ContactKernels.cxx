@@ -507,6 +507,35 @@ void findVertexTriangles(const ThickMeshView& a,
     });
 }
 
+/// A's triangles that B's vertex w may reach (a triangle whose vertices
+/// move at most m moves at most m), in the order A's tree visits them.
+/// False when there is none.
+bool findTrianglesOfA(const ThickMeshView& a,
+  const ThickMeshView& b,
+  int w,
+  double reach,
+  StaticPairCandidates& candidates)
+{
+  const Vector3& x = (*b.positions)[w];
+  const auto& pa = *a.positions;
+  const auto& ra = *a.radii;
+  const double radius = (*b.radii)[w] + b.contactDistance;
+  const std::size_t before = candidates.trianglesOfA.size();
+  a.bvh->forEachOverlap(sphereBox(b, w, radius + reach),
+    [&](int t)
+    {
+      const Triangle& tri = (*a.triangles)[t];
+      const double distance =
+        pointTriangleContact(x, 0.0, pa[tri[0]], pa[tri[1]], pa[tri[2]], 0.0, 0.0, 0.0, 0.0)
+          .distance;
+      if (distance < radius + a.contactDistance + largestRadius(ra, tri) + reach)
+      {
+        candidates.trianglesOfA.push_back(t);
+      }
+    });
+  return candidates.trianglesOfA.size() > before;
+}
+
 /// Owned edge pairs of A's triangles near B's edge (b0, b1) of triangle tb.
 void findEdgePairsOf(const ThickMeshView& a,
   const ThickMeshView& b,
@@ -566,19 +595,17 @@ void findCandidates(const ThickMeshView& a,
     candidates.vertexStart.push_back(static_cast<int>(candidates.vertexTriangles.size()));
   }
   candidates.verticesOfB.clear();
+  candidates.triangleStart.assign(1, 0);
+  candidates.trianglesOfA.clear();
   const BoundingBox boundsOfA = inflated(a.bvh->bounds(), reach);
   const int countB = static_cast<int>(b.positions->size());
   for (int w = 0; w < countB; ++w)
   {
-    const BoundingBox box = sphereBox(b, w, (*b.radii)[w] + b.contactDistance + reach);
-    bool near = false;
-    if (box.intersects(boundsOfA))
-    {
-      a.bvh->forEachOverlap(box, [&](int) { near = true; });
-    }
-    if (near)
+    if (sphereBox(b, w, (*b.radii)[w] + b.contactDistance + reach).intersects(boundsOfA) &&
+        findTrianglesOfA(a, b, w, reach, candidates))
     {
       candidates.verticesOfB.push_back(w);
+      candidates.triangleStart.push_back(static_cast<int>(candidates.trianglesOfA.size()));
     }
   }
   candidates.edgePairs.clear();
@@ -663,6 +690,44 @@ void vertexCandidateContact(const ThickMeshView& a,
   }
 }
 
+/// B's vertex verticesOfB[k] against its candidate triangles of A: what
+/// deepestSphereContact finds in A's tree (same boxes, same order).
+void vertexOfBCandidateContact(const ThickMeshView& a,
+  const ThickMeshView& b,
+  std::size_t k,
+  const StaticPairCandidates& candidates,
+  std::vector<FeatureContact>& contacts)
+{
+  const int w = candidates.verticesOfB[k];
+  const Vector3& x = (*b.positions)[w];
+  const double radius = (*b.radii)[w] + b.contactDistance;
+  const double thickness = radius + a.contactDistance;
+  const BoundingBox query = sphereBox(b, w, radius);
+  const auto& pa = *a.positions;
+  const auto& ra = *a.radii;
+  DeepestPointContact deepest;
+  for (int i = candidates.triangleStart[k]; i < candidates.triangleStart[k + 1]; ++i)
+  {
+    const int t = candidates.trianglesOfA[i];
+    const Triangle& tri = (*a.triangles)[t];
+    if (!TriangleBvh::triangleBox(pa, tri, ra, a.bvh->contactDistance()).intersects(query))
+    {
+      continue;
+    }
+    const PointTriangleContact c = pointTriangleContact(
+      x, thickness, pa[tri[0]], pa[tri[1]], pa[tri[2]], ra[tri[0]], ra[tri[1]], ra[tri[2]], 0.0);
+    if (c.penetrating() && (deepest.triangle < 0 || c.depth > deepest.contact.depth))
+    {
+      deepest.contact = c;
+      deepest.triangle = t;
+    }
+  }
+  if (deepest.triangle >= 0)
+  {
+    addVertexContact(b, a, false, w, deepest, contacts);
+  }
+}
+
 /// The candidate edge pairs whose ends are free and whose boxes overlap.
 void edgeCandidateContacts(const ThickMeshView& a,
   const ThickMeshView& b,
@@ -730,9 +795,9 @@ void meshStaticContacts(const ThickMeshView& a,
   {
     vertexCandidateContact(a, b, v, candidates, contacts);
   }
-  for (const int w : candidates.verticesOfB)
+  for (std::size_t k = 0; k < candidates.verticesOfB.size(); ++k)
   {
-    vertexFaceContact(b, a, false, w, contacts);
+    vertexOfBCandidateContact(a, b, k, candidates, contacts);
   }
   finishContacts(a,
     b,

@@ -124,8 +124,12 @@ struct StaticPairCandidates
   std::vector<int> vertexStart;
   std::vector<int> vertexTriangles;
   std::vector<BoundingBox> vertexTriangleBoxes;
-  /// B's vertices near A, ascending.
+  /// B's vertices near A, ascending, and A's triangles near each:
+  /// triangleOfA[triangleStart[k], triangleStart[k + 1]) for verticesOfB[k],
+  /// in the order A's tree visits them (refitting keeps that order).
   std::vector<int> verticesOfB;
+  std::vector<int> triangleStart;
+  std::vector<int> trianglesOfA;
   /// Owned edges of A and B (as their owning triangles orient them) that
   /// may come within reach, with B's edge box.
   struct EdgePair
@@ -143,6 +147,8 @@ struct StaticPairCandidates
 /// bit for bit; the candidate features are searched again only when a
 /// vertex of `a` has moved more than `margin` since the last search, or
 /// `a` changed (another identity; an identity of 0 searches every call).
+/// While its identity holds, `a`'s tree must only be refitted (the order in
+/// which its leaves are visited decides between equally deep contacts).
 void meshStaticContacts(const ThickMeshView& a,
   const ThickMeshView& b,
   double margin,
