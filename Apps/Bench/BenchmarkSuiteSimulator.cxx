@@ -120,11 +120,13 @@ void replayScenario(const std::string& recordingPath,
   }
   reporter.report(name, "replay speed, rendering off", duration / wall, "x real time");
   // Temporal coherence (CollisionSceneParameters::candidateMarginPerRadius):
-  // how often the tissue moved beyond the margin.
-  reporter.report(name,
-    "obstacle candidate searches per 100 steps",
-    100.0 * searches / std::max<std::size_t>(1, steps.size()),
-    "searches");
+  // how often the tissue moved beyond the margin or was cut (not reported
+  // without obstacles: none).
+  if (searches > 0)
+    reporter.report(name,
+      "obstacle candidate searches per 100 steps",
+      100.0 * searches / std::max<std::size_t>(1, steps.size()),
+      "searches");
 }
 
 /// The simulator window's drawing (arthroscope view and overview) at
