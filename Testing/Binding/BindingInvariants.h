@@ -53,19 +53,11 @@ inline void expectSameSurface(const TriangleMesh& original, const TriangleMesh& 
   EXPECT_LT(farthest, 1e-9 * scale);
 }
 
-inline void checkBinding(const TriangleMesh& original,
-  const TriangleMesh& collision,
-  const VisualCollisionBinding& b)
+/// Every visual vertex bound once, its parameters a point of its collision
+/// element.
+inline void expectEveryVertexBound(const VisualCollisionBinding& b, double scale)
 {
   const TriangleMesh& mesh = b.visual;
-  ASSERT_EQ(b.vertices.size(), mesh.vertexCount());
-  ASSERT_EQ(b.triangleRegion.size(), mesh.triangleCount());
-
-  expectSameSurface(original, mesh);
-  const double scale = original.boundingBox().diagonal().norm();
-
-  // Every visual vertex bound once, its parameters a point of its
-  // collision element.
   std::set<int> pairedVertices;
   ASSERT_EQ(b.creaseVisualVertices.size(), b.pairedVisualVertices.size());
   for (std::size_t c = 0; c < b.pairedVisualVertices.size(); ++c)
@@ -110,10 +102,14 @@ inline void checkBinding(const TriangleMesh& original,
       EXPECT_NE(vb.side, 0);
     }
   }
+}
 
-  // Regions: each collision triangle and side one topological disk (V - E
-  // + F = 1, one boundary loop), all together covering every visual
-  // triangle once (triangleRegion has one entry per triangle).
+/// Regions: each collision triangle and side one topological disk (V - E +
+/// F = 1, one boundary loop), all together covering every visual triangle
+/// once (triangleRegion has one entry per triangle).
+inline void expectRegionsAreDisks(const VisualCollisionBinding& b, const TriangleMesh& collision)
+{
+  const TriangleMesh& mesh = b.visual;
   std::map<std::pair<int, int>, std::vector<int>> regions;
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
   {
@@ -166,54 +162,91 @@ inline void checkBinding(const TriangleMesh& original,
     }
     EXPECT_EQ(walked, boundaryNeighbours.size());
   }
+}
 
-  // Paths: from the right vertices, along mesh edges, as short as the edge
-  // path between the same vertices (on the re-meshed surface, where the
-  // paired points inside visual edges are vertices; a side's path against
-  // edge paths over that side's triangles, the half it is kept on).
-  const TriangleMeshAdjacency adjacency(mesh);
-  // The half each visual triangle lies on (positive, negative, a cleft's).
-  auto halfOf = [&](int t)
-  { return b.collisionSides.halves[b.triangleRegion[t]][sideSlot(b.triangleSide[t])]; };
-  auto edgePathLength = [&](int source, int target, const SurfaceHalf* half)
+/// The half each visual triangle lies on (positive, negative, a cleft's).
+inline SurfaceHalf visualTriangleHalf(const VisualCollisionBinding& b, int t)
+{
+  return b.collisionSides.halves[b.triangleRegion[t]][sideSlot(b.triangleSide[t])];
+}
+
+/// Length of the shortest edge path from source to target over the
+/// triangles of `half` (all triangles when null).
+inline double edgePathLength(const VisualCollisionBinding& b,
+  const TriangleMeshAdjacency& adjacency,
+  int source,
+  int target,
+  const SurfaceHalf* half)
+{
+  const TriangleMesh& mesh = b.visual;
+  std::vector<double> distance(mesh.vertexCount(), 1e300);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  distance[source] = 0.0;
+  queue.emplace(0.0, source);
+  while (!queue.empty())
   {
-    std::vector<double> distance(mesh.vertexCount(), 1e300);
-    using Entry = std::pair<double, int>;
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-    distance[source] = 0.0;
-    queue.emplace(0.0, source);
-    while (!queue.empty())
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (v == target)
     {
-      const auto [d, v] = queue.top();
-      queue.pop();
-      if (v == target)
-      {
-        return d;
-      }
-      if (d > distance[v])
+      return d;
+    }
+    if (d > distance[v])
+    {
+      continue;
+    }
+    for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
+         ++t)
+    {
+      if (half != nullptr && visualTriangleHalf(b, *t) != *half)
       {
         continue;
       }
-      for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
-           ++t)
+      for (int w : mesh.triangles[*t])
       {
-        if (half != nullptr && halfOf(*t) != *half)
+        const double next = d + (mesh.positions[w] - mesh.positions[v]).norm();
+        if (next < distance[w])
         {
-          continue;
-        }
-        for (int w : mesh.triangles[*t])
-        {
-          const double next = d + (mesh.positions[w] - mesh.positions[v]).norm();
-          if (next < distance[w])
-          {
-            distance[w] = next;
-            queue.emplace(next, w);
-          }
+          distance[w] = next;
+          queue.emplace(next, w);
         }
       }
     }
-    return 1e300;
-  };
+  }
+  return 1e300;
+}
+
+/// Per path (3 edge + side + 1) its half, none for a rim path: the half its
+/// wedge's triangle sides face.
+inline std::map<int, SurfaceHalf> pathHalves(const VisualCollisionBinding& b)
+{
+  std::map<int, SurfaceHalf> pathHalf;
+  std::map<int, int> edgeTriangles;
+  for (const Triangle& t : b.collisionTriangles)
+    for (int k = 0; k < 3; ++k)
+      ++edgeTriangles[b.collisionEdgeIndex(t[k], t[(k + 1) % 3])];
+  for (std::size_t t = 0; t < b.collisionTriangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      const Triangle& ct = b.collisionTriangles[t];
+      const int e = b.collisionEdgeIndex(ct[k], ct[(k + 1) % 3]);
+      for (int side : { 1, -1 })
+        if (edgeTriangles[e] > 1)
+          pathHalf[3 * e + b.collisionSides.pathSide(static_cast<int>(t), side, edgeTriangles[e]) +
+                   1] = b.collisionSides.halves[t][sideSlot(side)];
+    }
+  return pathHalf;
+}
+
+/// Paths: from the right vertices, along mesh edges, as short as the edge
+/// path between the same vertices (on the re-meshed surface, where the
+/// paired points inside visual edges are vertices; a path against edge
+/// paths over its own half, where it is kept).
+inline void expectShortestPaths(const VisualCollisionBinding& b)
+{
+  const TriangleMesh& mesh = b.visual;
+  const TriangleMeshAdjacency adjacency(mesh);
   // Paths meet only at their end vertices (SharedPathRuns.h): no inner
   // vertex of a path lies on another path.
   std::vector<int> pathsThrough(mesh.vertexCount(), 0);
@@ -230,23 +263,7 @@ inline void checkBinding(const TriangleMesh& original,
     longestEdge = std::max(longestEdge,
       (mesh.positions[adjacency.edge(e)[0]] - mesh.positions[adjacency.edge(e)[1]]).norm());
   const auto ends = b.pathEnds();
-  // The half of each path (none for a rim path): the half its wedge's
-  // triangle sides face.
-  std::map<int, SurfaceHalf> pathHalf;
-  std::map<int, int> edgeTriangles;
-  for (const Triangle& t : b.collisionTriangles)
-    for (int k = 0; k < 3; ++k)
-      ++edgeTriangles[b.collisionEdgeIndex(t[k], t[(k + 1) % 3])];
-  for (std::size_t t = 0; t < b.collisionTriangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-    {
-      const Triangle& ct = b.collisionTriangles[t];
-      const int e = b.collisionEdgeIndex(ct[k], ct[(k + 1) % 3]);
-      for (int side : { 1, -1 })
-        if (edgeTriangles[e] > 1)
-          pathHalf[3 * e + b.collisionSides.pathSide(static_cast<int>(t), side, edgeTriangles[e]) +
-                   1] = b.collisionSides.halves[t][sideSlot(side)];
-    }
+  const std::map<int, SurfaceHalf> pathHalf = pathHalves(b);
   for (const BindingPath& path : b.paths)
   {
     ASSERT_FALSE(path.visualVertices.empty());
@@ -257,7 +274,9 @@ inline void checkBinding(const TriangleMesh& original,
       EXPECT_GE(adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]), 0);
     }
     const auto half = pathHalf.find(path.collisionEdge * 3 + path.side + 1);
-    const double edgePath = edgePathLength(path.visualVertices.front(),
+    const double edgePath = edgePathLength(b,
+      adjacency,
+      path.visualVertices.front(),
       path.visualVertices.back(),
       half != pathHalf.end() ? &half->second : nullptr);
     // The re-meshed surface holds the path's own edges, so the edge path
@@ -274,6 +293,18 @@ inline void checkBinding(const TriangleMesh& original,
           .norm() *
         (1.0 - 1e-12));
   }
+}
+
+inline void checkBinding(const TriangleMesh& original,
+  const TriangleMesh& collision,
+  const VisualCollisionBinding& b)
+{
+  ASSERT_EQ(b.vertices.size(), b.visual.vertexCount());
+  ASSERT_EQ(b.triangleRegion.size(), b.visual.triangleCount());
+  expectSameSurface(original, b.visual);
+  expectEveryVertexBound(b, original.boundingBox().diagonal().norm());
+  expectRegionsAreDisks(b, collision);
+  expectShortestPaths(b);
 }
 
 } // namespace thintissue::testing
