@@ -1,7 +1,6 @@
 #include "CollisionSides.h"
 
 #include "ThinTissueError.h"
-#include "TriangleMeshAdjacency.h"
 #include "UnionFind.h"
 
 #include <algorithm>
@@ -227,7 +226,12 @@ bool CollisionSides::hasJunctions() const
 
 CollisionSides analyseCollisionSides(const TriangleMesh& collision)
 {
-  const TriangleMeshAdjacency adjacency(collision);
+  return analyseCollisionSides(collision, TriangleMeshAdjacency(collision));
+}
+
+CollisionSides analyseCollisionSides(const TriangleMesh& collision,
+  const TriangleMeshAdjacency& adjacency)
+{
   const std::vector<std::vector<Wedge>> wedges = edgeWedges(collision, adjacency);
   CollisionSides sides;
   sides.halves = sideHalves(collision, adjacency, wedges);

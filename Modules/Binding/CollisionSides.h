@@ -18,6 +18,7 @@
 
 #include "ThinTissueBindingModule.h"
 #include "TriangleMesh.h"
+#include "TriangleMeshAdjacency.h"
 
 #include <array>
 #include <cstdint>
@@ -87,6 +88,9 @@ struct THINTISSUEBINDING_EXPORT CollisionSides
 /// vertex that is none of these (more triangles at an edge, inconsistent
 /// normals, fans touching at a vertex).
 THINTISSUEBINDING_EXPORT CollisionSides analyseCollisionSides(const TriangleMesh& collision);
+/// The same with the mesh's adjacency already built.
+THINTISSUEBINDING_EXPORT CollisionSides analyseCollisionSides(const TriangleMesh& collision,
+  const TriangleMeshAdjacency& adjacency);
 
 } // namespace thintissue
 

@@ -299,32 +299,18 @@ struct CollisionTopology
 CollisionTopology analyseCollision(const TriangleMesh& collision)
 {
   CollisionTopology topology;
-  topology.sides = analyseCollisionSides(collision); // at most three triangles an edge
-  std::unordered_map<std::uint64_t, std::array<int, 3>> trianglesOfEdge;
-  for (std::size_t t = 0; t < collision.triangleCount(); ++t)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const Triangle& tri = collision.triangles[t];
-      auto [it, inserted] = trianglesOfEdge.try_emplace(
-        edgeKey(tri[k], tri[(k + 1) % 3]), std::array<int, 3>{ { -1, -1, -1 } });
-      *std::find(it->second.begin(), it->second.end(), -1) = static_cast<int>(t);
-    }
-  }
-  for (const auto& entry : trianglesOfEdge)
-  {
-    const std::uint64_t key = entry.first;
-    topology.edges.push_back(
-      { { static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu) } });
-  }
-  std::sort(topology.edges.begin(), topology.edges.end());
+  const TriangleMeshAdjacency adjacency(collision);             // edges sorted (lower, higher)
+  topology.sides = analyseCollisionSides(collision, adjacency); // at most three triangles an edge
   topology.borderVertex = topology.sides.borderVertex;
-  for (const auto& e : topology.edges)
+  for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
   {
-    const std::array<int, 3>& triangles = trianglesOfEdge[edgeKey(e[0], e[1])];
+    const auto edge = static_cast<int>(e);
+    std::array<int, 3> triangles{ { -1, -1, -1 } };
+    std::copy(
+      adjacency.edgeTrianglesBegin(edge), adjacency.edgeTrianglesEnd(edge), triangles.begin());
+    topology.edges.push_back(adjacency.edge(edge));
     topology.edgeTriangles.push_back(triangles);
-    topology.edgeTriangleCount.push_back(static_cast<int>(
-      std::count_if(triangles.begin(), triangles.end(), [](int t) { return t >= 0; })));
+    topology.edgeTriangleCount.push_back(adjacency.edgeTriangleCount(edge));
   }
   topology.vertexNormals.assign(collision.vertexCount(), Vector3::Zero());
   for (const Triangle& t : collision.triangles)

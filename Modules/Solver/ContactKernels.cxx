@@ -29,36 +29,50 @@ ThickMeshView viewOf(const StaticObstacle& obstacle)
     obstacle.contactDistance() };
 }
 
+namespace
+{
+
+/// The sphere (centre, thickness) against triangle t of `mesh`, kept in
+/// `deepest` when it penetrates deeper than what is kept (the first of
+/// equal depths stays).
+void keepDeeperPointContact(const Vector3& centre,
+  double thickness,
+  const ThickMeshView& mesh,
+  int t,
+  DeepestPointContact& deepest)
+{
+  const auto& positions = *mesh.positions;
+  const auto& radii = *mesh.radii;
+  const Triangle& tri = (*mesh.triangles)[t];
+  const PointTriangleContact c = pointTriangleContact(centre,
+    thickness,
+    positions[tri[0]],
+    positions[tri[1]],
+    positions[tri[2]],
+    radii[tri[0]],
+    radii[tri[1]],
+    radii[tri[2]],
+    0.0);
+  if (c.penetrating() && (deepest.triangle < 0 || c.depth > deepest.contact.depth))
+  {
+    deepest.contact = c;
+    deepest.triangle = t;
+  }
+}
+
+} // namespace
+
 DeepestPointContact deepestSphereContact(const Vector3& centre,
   double radius,
   const ThickMeshView& mesh)
 {
-  const auto& positions = *mesh.positions;
-  const auto& radii = *mesh.radii;
   const double thickness = radius + mesh.contactDistance;
   BoundingBox query(centre);
   query.min().array() -= radius;
   query.max().array() += radius;
   DeepestPointContact deepest;
-  mesh.bvh->forEachOverlap(query,
-    [&](int t)
-    {
-      const Triangle& tri = (*mesh.triangles)[t];
-      const PointTriangleContact c = pointTriangleContact(centre,
-        thickness,
-        positions[tri[0]],
-        positions[tri[1]],
-        positions[tri[2]],
-        radii[tri[0]],
-        radii[tri[1]],
-        radii[tri[2]],
-        0.0);
-      if (c.penetrating() && (deepest.triangle < 0 || c.depth > deepest.contact.depth))
-      {
-        deepest.contact = c;
-        deepest.triangle = t;
-      }
-    });
+  mesh.bvh->forEachOverlap(
+    query, [&](int t) { keepDeeperPointContact(centre, thickness, mesh, t, deepest); });
   return deepest;
 }
 
@@ -665,23 +679,12 @@ void vertexCandidateContact(const ThickMeshView& a,
   const double radius = (*a.radii)[v] + a.contactDistance;
   const double thickness = radius + b.contactDistance;
   const BoundingBox query = sphereBox(a, v, radius);
-  const auto& pb = *b.positions;
-  const auto& rb = *b.radii;
   DeepestPointContact deepest;
   for (int k = first; k < end; ++k)
   {
-    if (!candidates.vertexTriangleBoxes[k].intersects(query))
+    if (candidates.vertexTriangleBoxes[k].intersects(query))
     {
-      continue;
-    }
-    const int t = candidates.vertexTriangles[k];
-    const Triangle& tri = (*b.triangles)[t];
-    const PointTriangleContact c = pointTriangleContact(
-      x, thickness, pb[tri[0]], pb[tri[1]], pb[tri[2]], rb[tri[0]], rb[tri[1]], rb[tri[2]], 0.0);
-    if (c.penetrating() && (deepest.triangle < 0 || c.depth > deepest.contact.depth))
-    {
-      deepest.contact = c;
-      deepest.triangle = t;
+      keepDeeperPointContact(x, thickness, b, candidates.vertexTriangles[k], deepest);
     }
   }
   if (deepest.triangle >= 0)
@@ -710,16 +713,9 @@ void vertexOfBCandidateContact(const ThickMeshView& a,
   {
     const int t = candidates.trianglesOfA[i];
     const Triangle& tri = (*a.triangles)[t];
-    if (!TriangleBvh::triangleBox(pa, tri, ra, a.bvh->contactDistance()).intersects(query))
+    if (TriangleBvh::triangleBox(pa, tri, ra, a.bvh->contactDistance()).intersects(query))
     {
-      continue;
-    }
-    const PointTriangleContact c = pointTriangleContact(
-      x, thickness, pa[tri[0]], pa[tri[1]], pa[tri[2]], ra[tri[0]], ra[tri[1]], ra[tri[2]], 0.0);
-    if (c.penetrating() && (deepest.triangle < 0 || c.depth > deepest.contact.depth))
-    {
-      deepest.contact = c;
-      deepest.triangle = t;
+      keepDeeperPointContact(x, thickness, a, t, deepest);
     }
   }
   if (deepest.triangle >= 0)
