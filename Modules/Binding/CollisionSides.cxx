@@ -88,9 +88,11 @@ std::array<Wedge, 3> junctionWedges(const TriangleMesh& collision,
 }
 
 /// The wedges of every edge: a border edge's one (its triangle's two
-/// sides: the rim), a manifold edge's two, a junction's three.
+/// sides: the rim), a manifold edge's two, a junction's three; an edge cut
+/// along but not opened yet, one rim per triangle.
 std::vector<std::vector<Wedge>> edgeWedges(const TriangleMesh& collision,
-  const TriangleMeshAdjacency& adjacency)
+  const TriangleMeshAdjacency& adjacency,
+  const std::vector<char>& cutEdge)
 {
   std::vector<std::vector<Wedge>> wedges(adjacency.edgeCount());
   for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
@@ -98,9 +100,12 @@ std::vector<std::vector<Wedge>> edgeWedges(const TriangleMesh& collision,
     const auto& edge = adjacency.edge(static_cast<int>(e));
     const int* triangles = adjacency.edgeTrianglesBegin(static_cast<int>(e));
     const int count = adjacency.edgeTriangleCount(static_cast<int>(e));
-    if (count == 1)
+    if (count == 1 || (cutEdge[e] && count <= 3))
     {
-      wedges[e] = { { { sideId(triangles[0], 1), sideId(triangles[0], -1) } } };
+      for (int i = 0; i < count; ++i)
+      {
+        wedges[e].push_back({ { sideId(triangles[i], 1), sideId(triangles[i], -1) } });
+      }
     }
     else if (count == 2)
     {
@@ -136,13 +141,14 @@ std::vector<std::vector<Wedge>> edgeWedges(const TriangleMesh& collision,
 /// of each.
 std::vector<std::array<SurfaceHalf, 2>> sideHalves(const TriangleMesh& collision,
   const TriangleMeshAdjacency& adjacency,
-  const std::vector<std::vector<Wedge>>& wedges)
+  const std::vector<std::vector<Wedge>>& wedges,
+  const std::vector<char>& rimEdge)
 {
   const std::size_t triangleCount = collision.triangleCount();
   UnionFind classes(2 * triangleCount);
   for (std::size_t e = 0; e < wedges.size(); ++e)
   {
-    if (wedges[e].size() < 2)
+    if (rimEdge[e])
     {
       continue; // the rim: between halves
     }
@@ -217,6 +223,50 @@ int sideClassesAt(int v,
   return count;
 }
 
+/// Fans of triangles around vertex v: joined through every triangle of
+/// each edge at v.
+int fansAt(int v, const TriangleMeshAdjacency& adjacency)
+{
+  const int* begin = adjacency.vertexTrianglesBegin(v);
+  const int* end = adjacency.vertexTrianglesEnd(v);
+  UnionFind fans(static_cast<std::size_t>(end - begin));
+  for (const int* t = begin; t != end; ++t)
+  {
+    for (int e : adjacency.triangleEdges(*t))
+    {
+      const auto& edge = adjacency.edge(e);
+      if (edge[0] != v && edge[1] != v)
+      {
+        continue;
+      }
+      for (const int* other = adjacency.edgeTrianglesBegin(e);
+           other != adjacency.edgeTrianglesEnd(e);
+           ++other)
+      {
+        fans.unite(
+          static_cast<int>(t - begin), static_cast<int>(std::find(begin, end, *other) - begin));
+      }
+    }
+  }
+  int count = 0;
+  for (int i = 0; i < static_cast<int>(end - begin); ++i)
+  {
+    count += fans.find(i) == i ? 1 : 0;
+  }
+  return count;
+}
+
+[[noreturn]] void throwTouchingFans(const TriangleMesh& collision,
+  std::size_t v,
+  int classes,
+  int expected)
+{
+  throw InvalidInputError(meshName(collision) + ": vertex " + std::to_string(v) + " joins " +
+                          std::to_string(classes) + " separate sheets of sides (" +
+                          std::to_string(expected) +
+                          " expected: its triangles form fans that touch at it only)");
+}
+
 } // namespace
 
 bool CollisionSides::hasJunctions() const
@@ -230,16 +280,32 @@ CollisionSides analyseCollisionSides(const TriangleMesh& collision)
 }
 
 CollisionSides analyseCollisionSides(const TriangleMesh& collision,
-  const TriangleMeshAdjacency& adjacency)
+  const TriangleMeshAdjacency& adjacency,
+  const std::vector<std::array<int, 2>>& cutEdges)
 {
-  const std::vector<std::vector<Wedge>> wedges = edgeWedges(collision, adjacency);
+  // A cut edge not opened yet is a rim for every triangle on it.
+  std::vector<char> rimEdge(adjacency.edgeCount(), 0);
+  for (const auto& edge : cutEdges)
+  {
+    const int e = adjacency.findEdge(edge[0], edge[1]);
+    if (e < 0)
+    {
+      throw InvalidInputError(meshName(collision) + ": cut " + edgeName(edge) + " is no edge");
+    }
+    rimEdge[e] = 1;
+  }
+  const std::vector<std::vector<Wedge>> wedges = edgeWedges(collision, adjacency, rimEdge);
+  for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
+  {
+    rimEdge[e] = rimEdge[e] || adjacency.isBorderEdge(static_cast<int>(e));
+  }
   CollisionSides sides;
-  sides.halves = sideHalves(collision, adjacency, wedges);
+  sides.halves = sideHalves(collision, adjacency, wedges, rimEdge);
   sides.junctionVertex.assign(collision.vertexCount(), 0);
   sides.borderVertex.assign(collision.vertexCount(), 0);
   for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
   {
-    if (adjacency.isBorderEdge(static_cast<int>(e)))
+    if (rimEdge[e])
     {
       for (int v : adjacency.edge(static_cast<int>(e)))
       {
@@ -256,15 +322,24 @@ CollisionSides analyseCollisionSides(const TriangleMesh& collision,
     }
     bool touchesJunction = false;
     const int classes = sideClassesAt(vertex, adjacency, wedges, touchesJunction);
-    const int expected = sides.borderVertex[v] ? 1 : (touchesJunction ? 3 : 2);
+    sides.junctionVertex[v] = classes == 3 ? 1 : 0;
+    if (sides.borderVertex[v])
+    {
+      // A rim joins the two sides of each sheet it borders, so a junction
+      // vertex on a rim of only some of its sheets (a cut through the body
+      // up to the junction) keeps two classes: one fan is what counts.
+      const int fans = fansAt(vertex, adjacency);
+      if (fans != 1)
+      {
+        throwTouchingFans(collision, v, fans, 1);
+      }
+      continue;
+    }
+    const int expected = touchesJunction ? 3 : 2;
     if (classes != expected)
     {
-      throw InvalidInputError(meshName(collision) + ": vertex " + std::to_string(v) + " joins " +
-                              std::to_string(classes) + " separate sheets of sides (" +
-                              std::to_string(expected) +
-                              " expected: its triangles form fans that touch at it only)");
+      throwTouchingFans(collision, v, classes, expected);
     }
-    sides.junctionVertex[v] = classes == 3 ? 1 : 0;
   }
   return sides;
 }

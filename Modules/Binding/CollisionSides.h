@@ -88,9 +88,13 @@ struct THINTISSUEBINDING_EXPORT CollisionSides
 /// vertex that is none of these (more triangles at an edge, inconsistent
 /// normals, fans touching at a vertex).
 THINTISSUEBINDING_EXPORT CollisionSides analyseCollisionSides(const TriangleMesh& collision);
-/// The same with the mesh's adjacency already built.
+/// The same with the mesh's adjacency already built, and for a mesh being
+/// cut: `cutEdges` were cut along but not opened yet (neither end was
+/// split), so their triangles meet there as at a border. (Two leaves whose
+/// body was cut off along their junction edge meet there, oriented alike.)
 THINTISSUEBINDING_EXPORT CollisionSides analyseCollisionSides(const TriangleMesh& collision,
-  const TriangleMeshAdjacency& adjacency);
+  const TriangleMeshAdjacency& adjacency,
+  const std::vector<std::array<int, 2>>& cutEdges = {});
 
 } // namespace thintissue
 

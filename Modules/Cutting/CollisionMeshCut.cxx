@@ -167,9 +167,22 @@ CuttableCollisionMesh::CuttableCollisionMesh(std::string name,
         "collision mesh '" + Name + "': vertex " + std::to_string(v) + " is not finite");
     }
   }
-  refuseJunctions();
+  checkTriangles();
+  TriangleMesh surface;
+  surface.name = Name;
+  surface.positions = RestPositions;
+  surface.triangles = Triangles;
+  Halves = analyseCollisionSides(surface).halves;
   VertexTriangles.assign(RestPositions.size(), {});
-  std::unordered_map<std::uint64_t, int> directed;
+  for (std::size_t t = 0; t < Triangles.size(); ++t)
+  {
+    addToAdjacency(static_cast<int>(t));
+  }
+}
+
+void CuttableCollisionMesh::checkTriangles() const
+{
+  const int n = static_cast<int>(RestPositions.size());
   for (std::size_t t = 0; t < Triangles.size(); ++t)
   {
     for (int k = 0; k < 3; ++k)
@@ -180,43 +193,53 @@ CuttableCollisionMesh::CuttableCollisionMesh(std::string name,
         throw InvalidInputError("collision mesh '" + Name + "': triangle " + std::to_string(t) +
                                 " has a bad corner " + std::to_string(a));
       }
-      const auto key = (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b);
-      if (!directed.emplace(key, static_cast<int>(t)).second)
-      {
-        throw InvalidInputError(
-          "collision mesh '" + Name + "': edge (" + std::to_string(a) + ", " + std::to_string(b) +
-          ") is shared by triangles of opposite orientation or by more than two triangles");
-      }
-    }
-    addToAdjacency(static_cast<int>(t));
-  }
-}
-
-void CuttableCollisionMesh::refuseJunctions() const
-{
-  // A horizontal cleavage's junction (CollisionSides.h) is bound, and
-  // simulated, but its three-sided cut is not made yet.
-  std::unordered_map<std::uint64_t, int> count;
-  for (const Triangle& t : Triangles)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const int a = t[k], b = t[(k + 1) % 3];
-      if (++count[edgeKey(a, b)] == 3)
-      {
-        throw InvalidInputError("collision mesh '" + Name + "': edge (" + std::to_string(a) + ", " +
-                                std::to_string(b) +
-                                ") joins three triangles (a horizontal cleavage's junction): "
-                                "cutting such a tissue is not supported yet");
-      }
     }
   }
 }
 
-std::array<int, 2> CuttableCollisionMesh::trianglesOfEdge(int a, int b) const
+std::array<int, 3> CuttableCollisionMesh::trianglesOfEdge(int a, int b) const
 {
   const auto it = EdgeTriangles.find(edgeKey(a, b));
-  return it == EdgeTriangles.end() ? std::array<int, 2>{ { -1, -1 } } : it->second;
+  return it == EdgeTriangles.end() ? std::array<int, 3>{ { -1, -1, -1 } } : it->second;
+}
+
+std::vector<std::array<int, 2>> CuttableCollisionMesh::closedCutEdges() const
+{
+  std::vector<std::array<int, 2>> edges;
+  edges.reserve(CutEdges.size());
+  for (std::uint64_t key : CutEdges)
+  {
+    edges.push_back({ { static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu) } });
+  }
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+bool CuttableCollisionMesh::isLeavesFold(int a, int b) const
+{
+  if (!CutEdges.count(edgeKey(a, b)))
+  {
+    return false;
+  }
+  const auto onEdge = trianglesOfEdge(a, b);
+  if (onEdge[1] < 0 || onEdge[2] >= 0)
+  {
+    return false;
+  }
+  // Alike: both run a -> b, or both b -> a.
+  auto runs = [this, a, b](int t)
+  {
+    const Triangle& corners = Triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (corners[k] == a && corners[(k + 1) % 3] == b)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  return runs(onEdge[0]) == runs(onEdge[1]);
 }
 
 void CuttableCollisionMesh::addToAdjacency(int t)
@@ -225,15 +248,13 @@ void CuttableCollisionMesh::addToAdjacency(int t)
   {
     const int a = Triangles[t][k], b = Triangles[t][(k + 1) % 3];
     VertexTriangles[a].push_back(t);
-    auto [it, inserted] = EdgeTriangles.emplace(edgeKey(a, b), std::array<int, 2>{ { t, -1 } });
+    auto [it, inserted] = EdgeTriangles.emplace(edgeKey(a, b), std::array<int, 3>{ { t, -1, -1 } });
     if (!inserted)
     {
-      if (it->second[1] >= 0)
-      {
-        throw InvalidInputError("collision mesh '" + Name + "': edge (" + std::to_string(a) + ", " +
-                                std::to_string(b) + ") has more than two triangles");
-      }
-      it->second[1] = t;
+      // The sides analysis (constructor) and the cut's splits and copies
+      // (which never add a triangle at an edge) keep three at most.
+      auto& list = it->second;
+      *std::find(list.begin(), list.end(), -1) = t;
     }
   }
 }
@@ -243,16 +264,14 @@ void CuttableCollisionMesh::removeFromAdjacency(int t)
   for (int k = 0; k < 3; ++k)
   {
     const int a = Triangles[t][k], b = Triangles[t][(k + 1) % 3];
-    auto& list = VertexTriangles[a];
-    list.erase(std::find(list.begin(), list.end(), t));
+    auto& fan = VertexTriangles[a];
+    fan.erase(std::find(fan.begin(), fan.end(), t));
     auto it = EdgeTriangles.find(edgeKey(a, b));
-    auto& pair = it->second;
-    if (pair[0] == t)
-    {
-      pair[0] = pair[1];
-    }
-    pair[1] = -1;
-    if (pair[0] < 0)
+    auto& onEdge = it->second;
+    // Kept packed: the triangles first, then -1.
+    std::remove(onEdge.begin(), onEdge.end(), t);
+    onEdge[2] = -1;
+    if (onEdge[0] < 0)
     {
       EdgeTriangles.erase(it);
     }
@@ -319,8 +338,8 @@ std::vector<CuttableCollisionMesh::TriangleFeatures> CuttableCollisionMesh::coll
   std::vector<int> candidates;
   for (const Crossing& c : sorted)
   {
-    const auto pair = trianglesOfEdge(c.a, c.b);
-    candidates.insert(candidates.end(), pair.begin(), pair.end());
+    const auto onEdge = trianglesOfEdge(c.a, c.b);
+    candidates.insert(candidates.end(), onEdge.begin(), onEdge.end());
     if (c.t < snapFraction || c.t > 1.0 - snapFraction)
     {
       const int v = c.t < snapFraction ? c.a : c.b;
@@ -333,6 +352,15 @@ std::vector<CuttableCollisionMesh::TriangleFeatures> CuttableCollisionMesh::coll
     const Vector3 rest = (1.0 - c.t) * RestPositions[c.a] + c.t * RestPositions[c.b];
     const int v = addVertex(rest, (1.0 - c.t) * Radii[c.a] + c.t * Radii[c.b]);
     edgePoints.emplace(edgeKey(c.a, c.b), v);
+    if (isLeavesFold(c.a, c.b))
+    {
+      // Two leaves whose body was cut off along their junction edge stay
+      // apart on both sides of a crossing. (A closed slit of one sheet
+      // crossed again closes there, as it always did: keeping it open
+      // would open its ends, which this cut does not reach.)
+      CutEdges.insert(edgeKey(c.a, v));
+      CutEdges.insert(edgeKey(v, c.b));
+    }
     NewCollisionVertex made;
     made.vertex = v;
     made.edge = { c.a, c.b };
@@ -613,6 +641,7 @@ void CuttableCollisionMesh::splitTriangle(const TriangleFeatures& f, CollisionCu
     {
       index = static_cast<int>(Triangles.size());
       Triangles.push_back(piece);
+      Halves.push_back(Halves[f.triangle]);
     }
     addToAdjacency(index);
     split.children.push_back(index);
@@ -646,12 +675,15 @@ void CuttableCollisionMesh::openAlongCut(CollisionCutResult& result)
         {
           continue;
         }
-        const auto pair = trianglesOfEdge(a, b);
-        const int other = pair[0] == fan[i] ? pair[1] : pair[0];
-        const auto found = std::find(fan.begin(), fan.end(), other);
-        if (other >= 0 && found != fan.end())
+        // Through every other triangle of the edge: a junction's three
+        // stay one fan while their edge is uncut.
+        for (int other : trianglesOfEdge(a, b))
         {
-          groups.unite(static_cast<int>(i), static_cast<int>(found - fan.begin()));
+          const auto found = std::find(fan.begin(), fan.end(), other);
+          if (other >= 0 && other != fan[i] && found != fan.end())
+          {
+            groups.unite(static_cast<int>(i), static_cast<int>(found - fan.begin()));
+          }
         }
       }
     }
@@ -675,6 +707,7 @@ void CuttableCollisionMesh::openAlongCut(CollisionCutResult& result)
       removeFromAdjacency(t);
       std::replace(Triangles[t].begin(), Triangles[t].end(), v, copyOfRoot[root]);
       addToAdjacency(t);
+      keepCutEdgesOfCopy(t, v, copyOfRoot[root]);
       result.changedTriangles.push_back(t);
     }
     if (std::any_of(copyOfRoot.begin(), copyOfRoot.end(), [](int c) { return c >= 0; }))
@@ -685,9 +718,24 @@ void CuttableCollisionMesh::openAlongCut(CollisionCutResult& result)
   // Cut edges that opened are border edges now.
   for (auto it = CutEdges.begin(); it != CutEdges.end();)
   {
-    const auto pair =
+    const auto onEdge =
       trianglesOfEdge(static_cast<int>(*it >> 32), static_cast<int>(*it & 0xffffffffu));
-    it = (pair[1] < 0) ? CutEdges.erase(it) : std::next(it);
+    it = (onEdge[1] < 0) ? CutEdges.erase(it) : std::next(it);
+  }
+}
+
+void CuttableCollisionMesh::keepCutEdgesOfCopy(int t, int v, int copy)
+{
+  // A cut edge at v moved to the copy is cut still: the triangles left on
+  // it (two leaves whose body was cut off along their junction edge, or
+  // two sides a closed slit joins) must not be joined through it by the
+  // fans of the vertices opened next, nor by a later cut's.
+  for (int w : Triangles[t])
+  {
+    if (w != copy && CutEdges.count(edgeKey(v, w)))
+    {
+      CutEdges.insert(edgeKey(copy, w));
+    }
   }
 }
 

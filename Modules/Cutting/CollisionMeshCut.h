@@ -16,10 +16,17 @@
 //    remembers it as a cut tip; when a later blade crosses another edge of a
 //    triangle at that tip, the cut is completed from the tip.
 //  - New vertices take the radius interpolated along their edge.
+//  - A horizontal cleavage's junction edges join three triangles (the body
+//    and the two leaves, CollisionSides.h). The cut treats them like any
+//    edge: a crossing splits all three triangles at one edge point, and the
+//    opening groups the fans through every triangle of an uncut edge, so
+//    each side of the blade gets a copy that is still a junction. The
+//    pieces inherit the halves of the visual surface their parent faced.
 #ifndef CollisionMeshCut_h
 #define CollisionMeshCut_h
 
 #include "Blade.h"
+#include "CollisionSides.h"
 #include "ThinTissueCuttingModule.h"
 #include "TriangleMesh.h"
 
@@ -86,8 +93,10 @@ class THINTISSUECUTTING_EXPORT CuttableCollisionMesh
 public:
   CuttableCollisionMesh() = default;
   /// Throws InvalidInputError naming `name` if an index is out of range, a
-  /// coordinate or radius is not finite, an edge has more than two
-  /// triangles, or two triangles sharing an edge are oriented differently.
+  /// coordinate or radius is not finite, or the triangles are no collision
+  /// mid-surface (analyseCollisionSides: an edge of more than three
+  /// triangles, neighbours oriented differently, a junction that is no
+  /// cleavage's, fans touching at a vertex).
   CuttableCollisionMesh(std::string name,
     std::vector<Vector3> restPositions,
     std::vector<Triangle> triangles,
@@ -100,10 +109,18 @@ public:
   const std::vector<Triangle>& triangles() const { return Triangles; }
   const std::vector<double>& radii() const { return Radii; }
   const std::vector<int>& trianglesOfVertex(int v) const { return VertexTriangles[v]; }
-  /// Triangles on edge (a, b): -1 where there is none.
-  std::array<int, 2> trianglesOfEdge(int a, int b) const;
+  /// Triangles on edge (a, b), in no particular order: -1 where there is
+  /// none (the third is there only at a cleavage's junction).
+  std::array<int, 3> trianglesOfEdge(int a, int b) const;
+  /// Per triangle, per side slot (0: +, 1: -): the half of the visual
+  /// surface it faces (CollisionSides); pieces inherit their parent's.
+  const std::vector<std::array<SurfaceHalf, 2>>& halves() const { return Halves; }
   /// Cut edges that have not opened (neither end was split).
   std::size_t closedCutEdgeCount() const { return CutEdges.size(); }
+  /// Those edges (lower, higher), sorted. A junction edge the cut ran
+  /// along may be one with two leaves left on it (the body gone), which
+  /// meet there oriented alike until a later cut opens it.
+  std::vector<std::array<int, 2>> closedCutEdges() const;
   /// Where the last blade that crossed an edge left the cut: the next blade
   /// continues from there (progressive cut).
   const std::unordered_set<int>& cutTips() const { return Tips; }
@@ -120,8 +137,7 @@ private:
   struct TriangleFeatures;
   static std::uint64_t edgeKey(int a, int b);
   void addToAdjacency(int t);
-  /// Refuses an edge of three triangles by name (a cleavage's junction).
-  void refuseJunctions() const;
+  void checkTriangles() const;
   void removeFromAdjacency(int t);
   int addVertex(const Vector3& rest, double radius);
   std::unordered_map<std::uint64_t, Crossing> findCrossings(const Blade& blade,
@@ -137,6 +153,10 @@ private:
     int j,
     CollisionCutResult& result) const;
   void openAlongCut(CollisionCutResult& result);
+  void keepCutEdgesOfCopy(int t, int v, int copy);
+  /// A closed cut edge left to two leaves oriented alike (their body cut
+  /// off along their junction edge).
+  bool isLeavesFold(int a, int b) const;
   void updateTips(const std::vector<int>& sweepFeatures,
     const std::vector<int>& reachedTips,
     const std::vector<std::array<int, 2>>& sweepCutEdges);
@@ -146,7 +166,8 @@ private:
   std::vector<Triangle> Triangles;
   std::vector<double> Radii;
   std::vector<std::vector<int>> VertexTriangles;
-  std::unordered_map<std::uint64_t, std::array<int, 2>> EdgeTriangles;
+  std::vector<std::array<SurfaceHalf, 2>> Halves;
+  std::unordered_map<std::uint64_t, std::array<int, 3>> EdgeTriangles;
   std::unordered_set<std::uint64_t> CutEdges;
   std::unordered_set<int> Tips;
 };

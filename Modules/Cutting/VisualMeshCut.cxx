@@ -391,6 +391,14 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
   {
     throw InvalidInputError(label + ": the binding does not match its visual mesh");
   }
+  if (binding.collisionSides.hasJunctions())
+  {
+    // The collision cut handles a junction; the visual cut's third side
+    // (the cleft's crease paths and end columns) is not made yet.
+    throw InvalidInputError(label +
+                            ": its collision mesh has a horizontal cleavage's junction (edges of "
+                            "three triangles): cutting its visual mesh is not supported yet");
+  }
   TriangleMaterial.assign(Mesh.triangleCount(), VisualMaterial::Surface);
   reserveRoom();
   // The binding pairs (+, -); here sides are indexed - then +, as paths.

@@ -21,17 +21,19 @@ namespace thintissue
 namespace cutting_test
 {
 
-/// Collision mesh: corners in range and distinct, no NaN, each directed
-/// edge once (consistent orientation, at most two triangles an edge), every
-/// vertex used and manifold (its triangles form one fan), no triangle of
-/// zero area.
+/// Collision mesh: corners in range and distinct, no NaN, every vertex
+/// used, no triangle of zero area; a collision mid-surface still
+/// (analyseCollisionSides, edges cut along but not opened counted as rims:
+/// consistent orientation, at most three triangles an edge and those a
+/// cleavage's junction, every vertex one fan, or a junction's three sheets)
+/// whose sides face the halves the cut kept for them (pieces inherit their
+/// parent's).
 inline ::testing::AssertionResult collisionMeshIsValid(const CuttableCollisionMesh& mesh)
 {
   const auto& x = mesh.restPositions();
   const auto& tris = mesh.triangles();
   const int n = static_cast<int>(x.size());
   const double scale = boundingBoxOf(x).diagonal().squaredNorm();
-  std::set<std::pair<int, int>> directed;
   std::vector<int> used(n, 0);
   for (std::size_t t = 0; t < tris.size(); ++t)
   {
@@ -40,9 +42,6 @@ inline ::testing::AssertionResult collisionMeshIsValid(const CuttableCollisionMe
     {
       if (tri[k] < 0 || tri[k] >= n || tri[k] == tri[(k + 1) % 3])
         return ::testing::AssertionFailure() << "triangle " << t << " has a bad corner";
-      if (!directed.insert({ tri[k], tri[(k + 1) % 3] }).second)
-        return ::testing::AssertionFailure()
-               << "directed edge (" << tri[k] << ", " << tri[(k + 1) % 3] << ") twice";
       ++used[tri[k]];
     }
     const double area2 = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]).norm();
@@ -55,37 +54,31 @@ inline ::testing::AssertionResult collisionMeshIsValid(const CuttableCollisionMe
       return ::testing::AssertionFailure() << "vertex " << v << " is not finite";
     if (used[v] == 0)
       return ::testing::AssertionFailure() << "vertex " << v << " is unused";
-    // One fan: the triangles around v connected through edges at v.
-    const auto& fan = mesh.trianglesOfVertex(v);
-    std::vector<int> group(fan.size());
-    std::iota(group.begin(), group.end(), 0);
-    bool merged = true;
-    while (merged)
-    {
-      merged = false;
-      for (std::size_t i = 0; i < fan.size(); ++i)
-        for (int k = 0; k < 3; ++k)
-        {
-          const int a = tris[fan[i]][k], b = tris[fan[i]][(k + 1) % 3];
-          if (a != v && b != v)
-            continue;
-          for (int other : mesh.trianglesOfEdge(a, b))
-          {
-            const auto at = std::find(fan.begin(), fan.end(), other);
-            if (other < 0 || at == fan.end())
-              continue;
-            const std::size_t j = static_cast<std::size_t>(at - fan.begin());
-            if (group[j] != group[i])
-            {
-              const int low = std::min(group[i], group[j]);
-              group[i] = group[j] = low;
-              merged = true;
-            }
-          }
-        }
-    }
-    if (std::set<int>(group.begin(), group.end()).size() != 1)
-      return ::testing::AssertionFailure() << "vertex " << v << " is not manifold (several fans)";
+  }
+  TriangleMesh surface;
+  surface.name = mesh.name();
+  surface.positions = x;
+  surface.triangles = tris;
+  try
+  {
+    // A leaf cut off its junction faces the cleft still, though the
+    // analysis of what is left sees a plain sheet there.
+    const CollisionSides sides =
+      analyseCollisionSides(surface, TriangleMeshAdjacency(surface), mesh.closedCutEdges());
+    for (std::size_t t = 0; t < tris.size(); ++t)
+      for (int slot = 0; slot < 2; ++slot)
+      {
+        const SurfaceHalf kept = mesh.halves()[t][slot];
+        const SurfaceHalf plain = slot == 0 ? SurfaceHalf::Positive : SurfaceHalf::Negative;
+        if (sides.halves[t][slot] != kept &&
+            !(kept == SurfaceHalf::Cleft && sides.halves[t][slot] == plain))
+          return ::testing::AssertionFailure()
+                 << "triangle " << t << " faces other halves than the cut kept for it";
+      }
+  }
+  catch (const InvalidInputError& e)
+  {
+    return ::testing::AssertionFailure() << e.what();
   }
   return ::testing::AssertionSuccess();
 }

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 
 using namespace thintissue;
@@ -41,6 +42,63 @@ Blade scalpelAlongY(double x, double y0, double y1)
 {
   return Blade::sweptSegment(
     Vector3(x, y0, -1), Vector3(x, y0, 1), Vector3(x, y1, -1), Vector3(x, y1, 1));
+}
+
+/// A horizontal cleavage in miniature: a flat body (x in [-2, 0], z = 0)
+/// and, from its edge x = 0 on, an upper and a lower leaf (x in [0, 2],
+/// z = +-0.3 x), y in [0, n]. The edges along x = 0 are junctions (three
+/// triangles); every triangle's normal points up.
+CuttableCollisionMesh cleft(int n, int leaves = 2)
+{
+  std::vector<Vector3> x;
+  std::vector<Triangle> t;
+  auto sheet = [&](int first, int last, double slope, int shared)
+  {
+    // shared >= 0: the column x = 0 is the body's (ids from `shared`).
+    std::vector<int> id;
+    for (int j = 0; j <= n; ++j)
+      for (int i = first; i <= last; ++i)
+      {
+        if (i == 0 && shared >= 0)
+        {
+          id.push_back(shared + j * 3 + 2);
+          continue;
+        }
+        id.push_back(static_cast<int>(x.size()));
+        x.emplace_back(i, j, slope * i);
+      }
+    const int w = last - first + 1;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i + 1 < w; ++i)
+      {
+        const int a = id[j * w + i], b = id[j * w + i + 1];
+        const int c = id[(j + 1) * w + i + 1], d = id[(j + 1) * w + i];
+        t.push_back({ a, b, c });
+        t.push_back({ a, c, d });
+      }
+  };
+  sheet(-2, 0, 0.0, -1);
+  for (int leaf = 0; leaf < leaves; ++leaf)
+    sheet(0, 2, leaf == 0 ? 0.3 : (leaf == 1 ? -0.3 : 0.6), 0);
+  return CuttableCollisionMesh("cleft", x, t, std::vector<double>(x.size(), 0.1));
+}
+
+/// A vertical scalpel at y = `y` swept from x0 to x1.
+Blade scalpelAlongX(double y, double x0, double x1)
+{
+  return Blade::sweptSegment(
+    Vector3(x0, y, -2), Vector3(x0, y, 2), Vector3(x1, y, -2), Vector3(x1, y, 2));
+}
+
+/// Vertices of the mesh on an edge of three triangles.
+int junctionVertexCount(const CuttableCollisionMesh& mesh)
+{
+  std::set<int> on;
+  for (const auto& tri : mesh.triangles())
+    for (int k = 0; k < 3; ++k)
+      if (mesh.trianglesOfEdge(tri[k], tri[(k + 1) % 3])[2] >= 0)
+        on.insert({ tri[k], tri[(k + 1) % 3] });
+  return static_cast<int>(on.size());
 }
 
 int pieceCount(const CuttableCollisionMesh& mesh)
@@ -267,4 +325,74 @@ TEST(CollisionMeshCut, NonManifoldOrInconsistentMeshesAreRefused)
   EXPECT_THROW(CuttableCollisionMesh("radii", x, { { 0, 1, 2 } }, { 1, 1 }), InvalidInputError);
   EXPECT_THROW(
     CuttableCollisionMesh("index", x, { { 0, 1, 9 } }, { 1, 1, 1, 1 }), InvalidInputError);
+}
+
+// A horizontal cleavage's junction (edges of three triangles, 5.3.1 with
+// CollisionSides.h): a blade across the cleft splits the body and both
+// leaves and the junction edge at one point; each side of the cut keeps a
+// copy of that point, a junction still, and the pieces face the halves
+// their parents faced.
+TEST(CollisionMeshCut, ACleavageIsCutThroughItsJunction)
+{
+  CuttableCollisionMesh mesh = cleft(3);
+  ASSERT_TRUE(collisionMeshIsValid(mesh));
+  ASSERT_EQ(junctionVertexCount(mesh), 4);
+  const auto result = mesh.cut(scalpelAlongX(1.5, -3, 3), mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(pieceCount(mesh), 2);
+  // Two cells of the body and two of each leaf, two triangles each.
+  EXPECT_EQ(result.splits.size(), 12u);
+  // The junction point and its copy: both still join three triangles.
+  EXPECT_EQ(junctionVertexCount(mesh), 6);
+  int onJunction = 0;
+  for (const auto& made : result.newVertices)
+  {
+    const int source = made.duplicateOf >= 0 ? made.duplicateOf : made.vertex;
+    onJunction += std::abs(mesh.restPositions()[source].x()) < 1e-12 ? 1 : 0;
+  }
+  EXPECT_EQ(onJunction, 2);
+}
+
+TEST(CollisionMeshCut, ACutStoppingAtTheJunctionOpensUpToItAndGoesOnLater)
+{
+  CuttableCollisionMesh mesh = cleft(3);
+  // Through both leaves, stopping in the body's first cell.
+  mesh.cut(scalpelAlongX(1.5, 3, -0.5), mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(pieceCount(mesh), 1);
+  EXPECT_FALSE(mesh.cutTips().empty());
+  mesh.cut(scalpelAlongX(1.5, -0.5, -3), mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(pieceCount(mesh), 2);
+}
+
+// Along the junction itself the cut runs through its vertices and along its
+// edges: the body and the two leaves come apart, three pieces, the leaves'
+// cleft sides facing the cleft's walls still.
+TEST(CollisionMeshCut, ACutAlongTheJunctionSeparatesTheBodyAndBothLeaves)
+{
+  CuttableCollisionMesh mesh = cleft(3);
+  const auto halves = mesh.halves();
+  mesh.cut(
+    Blade::sweptSegment(Vector3(0, -1, -2), Vector3(0, -1, 2), Vector3(0, 4, -2), Vector3(0, 4, 2)),
+    mesh.restPositions());
+  EXPECT_TRUE(collisionMeshIsValid(mesh));
+  EXPECT_EQ(pieceCount(mesh), 3);
+  EXPECT_EQ(junctionVertexCount(mesh), 0);
+  ASSERT_EQ(mesh.halves().size(), halves.size());
+  EXPECT_EQ(mesh.halves(), halves);
+}
+
+TEST(CollisionMeshCut, AnEdgeOfFourTrianglesIsRefusedByName)
+{
+  try
+  {
+    cleft(2, 3);
+    ADD_FAILURE() << "four triangles at an edge were taken";
+  }
+  catch (const InvalidInputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("'cleft'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("4 triangles"), std::string::npos) << e.what();
+  }
 }
