@@ -136,8 +136,12 @@ struct TrilinearMap
     , a6((c[5] - c[1]) - (c[4] - c[0]))
     , a7(((c[6] - c[2]) - (c[5] - c[1])) - ((c[7] - c[3]) - (c[4] - c[0])))
     , scale(std::max({ a1.norm(), a2.norm(), a3.norm() }))
+    , affine(a4.isZero(0.0) && a5.isZero(0.0) && a6.isZero(0.0) && a7.isZero(0.0))
   {
   }
+
+  /// No bilinear or trilinear term: a parallelepiped.
+  bool isAffine() const { return affine; }
 
   Vector3 relativePoint(const Vector3& l) const
   {
@@ -161,6 +165,7 @@ struct TrilinearMap
 
   Vector3 a1, a2, a3, a4, a5, a6, a7;
   double scale;
+  bool affine;
 };
 
 // Local coordinates in [0,1]^3 of the point of the hexahedron closest to
@@ -232,7 +237,18 @@ bool invertTrilinearMap(const HexahedronCorners& c, const Vector3& point, Vector
     return false;
   }
   Vector3 l = Vector3::Constant(0.5);
-  for (int iteration = 0; iteration < 60; ++iteration)
+  if (map.isAffine())
+  {
+    // A parallelepiped (every cell of a grid at rest): the map is linear
+    // and one solve is exact; Newton took two steps and two inverses.
+    const Eigen::Matrix3d jacobian = map.jacobian(l);
+    if (!(std::abs(jacobian.determinant()) > 1e-14 * scale * scale * scale))
+    {
+      return false;
+    }
+    l = jacobian.inverse() * target;
+  }
+  for (int iteration = 0; iteration < 60 && !map.isAffine(); ++iteration)
   {
     const Vector3 residual = map.relativePoint(l) - target;
     const Eigen::Matrix3d jacobian = map.jacobian(l);
