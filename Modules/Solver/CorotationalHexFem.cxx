@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <thread>
 
@@ -71,6 +72,56 @@ void checkSettings(const CorotationalHexFemSettings& s)
   }
 }
 
+/// Eigen's CHOLMOD wrapper with a solve that reuses its workspace:
+/// cholmod_solve2 keeps the solution X and the workspaces Y and E between
+/// calls, where Eigen's solve allocates (and frees) a result per call -- a
+/// stale-factor step solves two to four times.
+class ReusableCholmodDecomposition : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Upper>
+{
+public:
+  ReusableCholmodDecomposition() = default;
+  ReusableCholmodDecomposition(const ReusableCholmodDecomposition&) = delete;
+  ReusableCholmodDecomposition& operator=(const ReusableCholmodDecomposition&) = delete;
+  ~ReusableCholmodDecomposition()
+  {
+    // Freed through the common they were allocated with, before Eigen's
+    // destructor finishes it.
+    cholmod_free_dense(&Solution, &cholmod());
+    cholmod_free_dense(&Work, &cholmod());
+    cholmod_free_dense(&SupernodalWork, &cholmod());
+  }
+  /// solution = A^-1 right with the present factor; false if CHOLMOD failed.
+  bool solveInto(const Eigen::VectorXd& right, Eigen::VectorXd& solution)
+  {
+    cholmod_dense view{};
+    view.nrow = view.nzmax = view.d = static_cast<std::size_t>(right.size());
+    view.ncol = 1;
+    view.x = const_cast<double*>(right.data()); // read only: B is input to cholmod_solve2
+    view.xtype = CHOLMOD_REAL;
+    view.dtype = CHOLMOD_DOUBLE;
+    if (!cholmod_solve2(CHOLMOD_A,
+          m_cholmodFactor,
+          &view,
+          nullptr,
+          &Solution,
+          nullptr,
+          &Work,
+          &SupernodalWork,
+          &cholmod()))
+    {
+      return false;
+    }
+    solution =
+      Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(Solution->x), right.size());
+    return true;
+  }
+
+private:
+  cholmod_dense* Solution = nullptr;
+  cholmod_dense* Work = nullptr;
+  cholmod_dense* SupernodalWork = nullptr;
+};
+
 /// A CHOLMOD factor of the system matrix. CHOLMOD keeps its workspace in
 /// the object, so each thread that factorizes has its own.
 class CholmodFactor
@@ -106,9 +157,14 @@ public:
     Decomposition.factorize(matrix);
     return Decomposition.info() == Eigen::Success;
   }
+  /// A failed solve (CHOLMOD out of memory) gives NaN, which every caller
+  /// refuses as a non-finite solution or residual.
   void solve(const Eigen::VectorXd& right, Eigen::VectorXd& solution)
   {
-    solution = Decomposition.solve(right);
+    if (!Decomposition.solveInto(right, solution))
+    {
+      solution.setConstant(right.size(), std::numeric_limits<double>::quiet_NaN());
+    }
   }
 
 private:
@@ -124,7 +180,7 @@ private:
         return CHOLMOD_AMD;
     }
   }
-  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Upper> Decomposition;
+  ReusableCholmodDecomposition Decomposition;
   long long AnalysedPattern = -1;
 };
 

@@ -145,7 +145,7 @@ HexahedronRestState computeHexahedronRestState(const HexahedronCorners& corners,
   return state;
 }
 
-Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& deformationGradient)
+Eigen::Matrix3d polarRotationBySvd(const Eigen::Matrix3d& deformationGradient)
 {
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(
     deformationGradient, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -156,6 +156,47 @@ Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& deformationGradient)
     u.col(2) = -u.col(2); // reflection: flip the smallest singular direction
   }
   return u * v.transpose();
+}
+
+Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& deformationGradient)
+{
+  // Higham's scaled Newton iteration X <- (g X + X^-T / g) / 2 (Higham,
+  // "Computing the polar decomposition", 1986): it converges quadratically
+  // to the orthogonal polar factor of a nonsingular X, a rotation when
+  // det F > 0, at a fraction of an SVD's cost (3 iterations for the small
+  // strains of a step). X^-T is the cofactor matrix over det X, whose
+  // columns are cross products of X's columns. g = |det X|^(-1/3) brings
+  // the singular values around 1 while they are far from it. An inverted,
+  // flat or non-converging element takes the SVD, whose convention (flip
+  // the smallest singular direction) then decides.
+  const double normSquared = deformationGradient.squaredNorm();
+  const double smallestDeterminant = 1e-6 * normSquared * std::sqrt(normSquared);
+  Eigen::Matrix3d x = deformationGradient;
+  bool scaled = true;
+  for (int iteration = 0; iteration < 20; ++iteration)
+  {
+    Eigen::Matrix3d cofactors;
+    cofactors.col(0) = x.col(1).cross(x.col(2));
+    cofactors.col(1) = x.col(2).cross(x.col(0));
+    cofactors.col(2) = x.col(0).cross(x.col(1));
+    const double determinant = x.col(0).dot(cofactors.col(0));
+    if (!(determinant > (iteration == 0 ? smallestDeterminant : 0.0)))
+    {
+      break; // inverted or degenerate (or not finite)
+    }
+    const double gain = scaled ? 1.0 / std::cbrt(determinant) : 1.0;
+    const Eigen::Matrix3d next = 0.5 * (gain * x + cofactors / (gain * determinant));
+    const double change = (next - x).squaredNorm();
+    x = next;
+    // The error after a step is about its change squared (over twice the
+    // smallest singular value): a change of 1e-9 leaves round-off.
+    if (change <= 1e-18)
+    {
+      return x;
+    }
+    scaled = change > 1e-4;
+  }
+  return polarRotationBySvd(deformationGradient);
 }
 
 } // namespace thintissue

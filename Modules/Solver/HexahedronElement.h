@@ -49,8 +49,15 @@ THINTISSUESOLVER_EXPORT HexahedronRestState computeHexahedronRestState(
   const LinearMaterial& material,
   const std::string& context);
 
-/// Rotation of the polar decomposition F = R S (R proper: det R = +1).
+/// Rotation of the polar decomposition F = R S (R proper: det R = +1), by
+/// a scaled Newton iteration; an inverted or degenerate F (det F <= 1e-6
+/// |F|^3) takes polarRotationBySvd.
 THINTISSUESOLVER_EXPORT Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& deformationGradient);
+/// The same by an SVD F = U S V^T, R = U V^T, with U's last column (the
+/// smallest singular direction) flipped when that is a reflection: the
+/// rotation convention for inverted elements.
+THINTISSUESOLVER_EXPORT Eigen::Matrix3d polarRotationBySvd(
+  const Eigen::Matrix3d& deformationGradient);
 
 } // namespace thintissue
 

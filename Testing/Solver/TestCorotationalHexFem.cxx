@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 using namespace thintissue;
 
@@ -138,6 +139,48 @@ TEST(CorotationalHexFem, RigidRotationGivesNoForceAndStretchRotatesWithIt)
     {
       EXPECT_LT((forces[n] - rotation * reference[n]).norm(), 1e-10 * scale);
     }
+  }
+}
+
+TEST(CorotationalHexFem, PolarRotationByNewtonIsTheSvdsRotation)
+{
+  // F = R S over rotations and stretches from near-rigid to strongly
+  // anisotropic: the Newton iteration must give the SVD's proper rotation;
+  // inverted and flat F must give exactly the SVD's convention.
+  std::mt19937 random(20);
+  const auto uniform = [&random](double low, double high)
+  { return std::uniform_real_distribution<double>(low, high)(random); };
+  int checked = 0;
+  for (const double spread : { 1e-6, 1e-3, 0.1, 0.5, 0.9 })
+  {
+    for (int k = 0; k < 200; ++k)
+    {
+      const Eigen::Matrix3d rotation = Eigen::AngleAxisd(
+        uniform(-M_PI, M_PI), Vector3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)).normalized())
+                                         .toRotationMatrix();
+      const Eigen::Matrix3d frame =
+        Eigen::AngleAxisd(uniform(-M_PI, M_PI), Vector3(1.0, uniform(-1, 1), 0.5).normalized())
+          .toRotationMatrix();
+      const Vector3 stretches(
+        1.0 + uniform(-spread, spread), 1.0 + uniform(-spread, spread), 1.0 / (1.0 + spread));
+      const Eigen::Matrix3d gradient =
+        rotation * frame * stretches.asDiagonal() * frame.transpose();
+      const Eigen::Matrix3d newton = polarRotation(gradient);
+      EXPECT_LT((newton - polarRotationBySvd(gradient)).norm(), 1e-12) << gradient;
+      EXPECT_LT((newton - rotation).norm(), 1e-12) << gradient;
+      EXPECT_LT((newton.transpose() * newton - Eigen::Matrix3d::Identity()).norm(), 1e-14);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 1000);
+  const Eigen::Matrix3d turn =
+    Eigen::AngleAxisd(0.7, Vector3(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d inverted = turn * Vector3(1.2, 0.9, -0.3).asDiagonal();
+  const Eigen::Matrix3d flat = turn * Vector3(1.2, 0.9, 1e-7).asDiagonal();
+  for (const Eigen::Matrix3d& gradient : { inverted, flat })
+  {
+    EXPECT_EQ(polarRotation(gradient), polarRotationBySvd(gradient)) << gradient;
+    EXPECT_NEAR(polarRotation(gradient).determinant(), 1.0, 1e-12);
   }
 }
 
