@@ -20,6 +20,7 @@
 #include <ctime>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 
@@ -221,6 +222,100 @@ HexahedralMesh block(int nx, int ny, int nz)
   return mesh;
 }
 
+/// The factor kinds on blocks between the thesis sizes and the 1,000
+/// block, where they cross.
+void reportFactorKindsBetween(BenchmarkReporter& reporter, const LinearMaterial& material)
+{
+  for (const auto& [nx, ny, nz] : { std::array<int, 3>{ 10, 5, 5 }, { 10, 10, 5 } })
+  {
+    const FemCase between{ "block (" + std::to_string(nx * ny * nz) + " hexahedra)",
+      block(nx, ny, nz),
+      material,
+      0.001,
+      std::nullopt };
+    reportFactorKinds(reporter, between, 200, 5);
+  }
+}
+
+/// A slit through the block (issue 20, item 6): the hexahedra left of the
+/// plane x = `cutX` and below y = `cutY` take copies of their nodes on that
+/// plane, as the cutter's duplication does. Returns the nodes copied.
+int slitBlock(CorotationalHexFem& fem, double cutX, double cutY)
+{
+  std::map<int, int> copies;
+  for (std::size_t h = 0; h < fem.hexahedronCount(); ++h)
+  {
+    Hexahedron nodes = fem.hexahedronNodes(h);
+    Vector3 centre = Vector3::Zero();
+    for (int node : nodes)
+    {
+      centre += fem.restPositions()[node] / 8.0;
+    }
+    if (centre.x() < cutX - 1.0 || centre.x() > cutX || centre.y() > cutY)
+    {
+      continue;
+    }
+    for (int& node : nodes)
+    {
+      if (std::abs(fem.restPositions()[node].x() - cutX) < 1e-9)
+      {
+        const auto [copy, isNew] = copies.try_emplace(node, -1);
+        if (isNew)
+        {
+          copy->second = static_cast<int>(
+            fem.addNode(fem.restPositions()[node], fem.positions()[node], fem.velocities()[node]));
+        }
+        node = copy->second;
+      }
+    }
+    fem.replaceHexahedronNodes(h, nodes);
+  }
+  return static_cast<int>(copies.size());
+}
+
+/// The step right after a cut of the 1,000 block and the worst of the 20
+/// after it: the price of a topology change (pattern, analysis, factor).
+void reportCutBlock(BenchmarkReporter& reporter, const LinearMaterial& material)
+{
+  const std::string label = "block (1,000 hexahedra) just cut, automatic";
+  if (!wanted(label))
+  {
+    return;
+  }
+  CorotationalHexFemSettings settings;
+  settings.timeStep = 0.001;
+  CorotationalHexFem fem(block(20, 10, 5), material, settings);
+  fem.setExternalForce(fem.nodeCount() - 1, Vector3(0.0, 0.2, -0.5));
+  std::vector<double> milliseconds;
+  const auto timedStep = [&]
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const SolverResult result = fem.step();
+    milliseconds.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    if (!result.ok)
+    {
+      throw std::runtime_error(label + ": " + result.message);
+    }
+  };
+  for (int k = 0; k < 20; ++k)
+  {
+    timedStep();
+  }
+  const double beforeCut = percentile(milliseconds, 0.5);
+  const int copied = slitBlock(fem, 10.0, 6.0);
+  milliseconds.clear();
+  for (int k = 0; k < 21; ++k)
+  {
+    timedStep();
+  }
+  reporter.report(label, "step time before the cut (median)", beforeCut, "ms");
+  reporter.report(label, "first step after the cut", milliseconds.front(), "ms");
+  milliseconds.erase(milliseconds.begin());
+  reporter.report(label, "worst of the next 20 steps", percentile(milliseconds, 1.0), "ms");
+  reporter.report(label, "nodes copied", copied, "");
+}
+
 } // namespace
 
 THINTISSUE_BENCHMARK_SUITE(femSuite,
@@ -332,17 +427,9 @@ THINTISSUE_BENCHMARK_SUITE(femSuite,
   }
   if (!context.quick)
   {
-    // Between the thesis sizes and the 1,000 block: where the factor kinds cross.
-    for (const auto& [nx, ny, nz] : { std::array<int, 3>{ 10, 5, 5 }, { 10, 10, 5 } })
-    {
-      const FemCase between{ "block (" + std::to_string(nx * ny * nz) + " hexahedra)",
-        block(nx, ny, nz),
-        softMaterial,
-        0.001,
-        std::nullopt };
-      reportFactorKinds(reporter, between, 200, 5);
-    }
+    reportFactorKindsBetween(reporter, softMaterial);
   }
+  reportCutBlock(reporter, softMaterial);
   if (!context.quick && wanted("block (100,000 hexahedra), block-Jacobi conjugate gradient"))
   {
     // Beyond what a factor can refresh: the iterative path only.

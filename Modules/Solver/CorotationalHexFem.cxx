@@ -653,11 +653,20 @@ void CorotationalHexFem::buildPattern()
       {
         const int ra = s.dofOfNode[Elements[e].nodes[a]];
         const int cb = s.dofOfNode[Elements[e].nodes[b]];
-        for (int k = 0; k < 9 && ra >= 0 && cb >= 0; ++k)
+        if (ra < 0 || cb < 0 || ra > cb)
+        {
+          continue;
+        }
+        // One search per block: its nine entries share the block row's
+        // rank in the columns (offsetOf), which was 75 % of a pattern build.
+        const std::vector<int>& blockRows = above[cb / 3];
+        const int rank = static_cast<int>(
+          std::lower_bound(blockRows.begin(), blockRows.end(), ra / 3) - blockRows.begin());
+        for (int k = 0; k < 9; ++k)
         {
           if (ra + k / 3 <= cb + k % 3)
           {
-            offsets[(a * 8 + b) * 9 + k] = offsetOf(ra + k / 3, cb + k % 3);
+            offsets[(a * 8 + b) * 9 + k] = starts[cb + k % 3] + 3 * rank + k / 3;
           }
         }
       }

@@ -112,10 +112,18 @@ struct CorotationalHexFemSettings
   /// iterations per step, with 20 about 2.
   int staleFactorIterationBudget = 20;
   /// Unknowns from which CHOLMOD factorizes supernodally (LL^T on dense
-  /// BLAS blocks) instead of simplicial LDL^T. Not negative. Measured with
-  /// OpenBLAS (CPU time per factorization): 360 unknowns 0.84 against 0.97
-  /// ms, 4,158 (1,000 hexahedra) 22 against 97 ms; below 300 the same.
-  int supernodalThreshold = 300;
+  /// BLAS blocks) instead of simplicial LDL^T. Not negative. Chosen on a
+  /// step's cost, a factorization shared by the steps it serves (10-20 at
+  /// thesis sizes, ~3 solves each) plus the solves: callgrind instructions
+  /// of 205 stale-factor steps (issue 20, OpenBLAS), supernodal against
+  /// simplicial: meniscus (312 unknowns) 271 M against 261 M (solves 88.5
+  /// against 66.0 M, factorizations 17.7 against 29.9 M); steak (474) 768
+  /// against 1,115 M; sheet (480) 615 against 781 M; 125-hexahedra block
+  /// (540) 516 against 891 M; 250 (1,080) 1.34 against 3.51 G; over 1,005
+  /// steps meniscus 1.05 against 0.98 G, steak 2.10 against 2.49 G, sheet
+  /// 1.99 against 2.20 G. CPU per factorization at 4,158 (1,000
+  /// hexahedra) 22 against 97 ms.
+  int supernodalThreshold = 400;
   FactorOrdering factorOrdering = FactorOrdering::Automatic;
   /// Unknowns from which StaleFactorConjugateGradient refactorizes on a
   /// worker thread instead of inside the step. Not negative. At the
