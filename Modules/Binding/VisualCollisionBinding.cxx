@@ -1777,23 +1777,38 @@ std::vector<std::array<int, PairedSlots>> pairedVertexIndices(
 /// into `remeshed`, pass by pass (a path re-routed around a vertex frees
 /// the vertices inside it for the next pass: a hub where several paths
 /// touch takes one pass per path around it). Returns each path's detours.
-std::vector<int> separateTouchingPaths(RemeshedSurface& remeshed)
+std::vector<int> separateTouchingPaths(RemeshedSurface& remeshed, std::size_t rimPathCount)
 {
-  std::vector<int> detours(remeshed.pathVertices.size(), 0);
+  // The side paths are moved before the rim paths (separateSharedRuns
+  // moves the first of two paths that touch): a rim path is the equator
+  // between the halves, and when a side path runs along it (through
+  // another vertex's rim point, on a rough rim) moving the rim path
+  // instead put the two detours across each other (longitudinal tear,
+  // sweep seed 1010: "paths 30 and 210 cross").
+  const std::size_t count = remeshed.pathVertices.size();
+  auto pathAt = [&](std::size_t position) { return (position + rimPathCount) % count; };
+  std::vector<int> detours(count, 0);
+  std::vector<std::vector<int>> ordered(count);
   for (int pass = 0; pass < MaximumSeparationPasses; ++pass)
   {
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      ordered[i] = remeshed.pathVertices[pathAt(i)];
+    }
     const TriangleMeshAdjacency remeshedAdjacency(remeshed.mesh);
-    const SharedRunSeparation separated = separateSharedRuns(
-      remeshed.mesh, remeshedAdjacency, remeshed.pathVertices, SharedRunOffsetFraction);
+    SharedRunSeparation separated =
+      separateSharedRuns(remeshed.mesh, remeshedAdjacency, ordered, SharedRunOffsetFraction);
     if (separated.runsSeparated == 0)
     {
       break;
     }
-    remeshed = insertPaths(remeshed.mesh, separated.paths, PathMergeTolerance);
-    for (std::size_t k = 0; k < detours.size(); ++k)
+    std::vector<SurfacePath> paths(count);
+    for (std::size_t i = 0; i < count; ++i)
     {
-      detours[k] += separated.detours[k];
+      paths[pathAt(i)] = std::move(separated.paths[i]);
+      detours[pathAt(i)] += separated.detours[i];
     }
+    remeshed = insertPaths(remeshed.mesh, paths, PathMergeTolerance);
   }
   return detours;
 }
@@ -2089,7 +2104,7 @@ void remeshAlongAllPaths(VisualCollisionBinding& binding,
       return inner < 0 ? nullptr : &regions.halves[halfIndex(innerRequests[inner].half)];
     },
     detours);
-  const std::vector<int> separated = separateTouchingPaths(remeshed);
+  const std::vector<int> separated = separateTouchingPaths(remeshed, rimRequests.size());
   for (std::size_t k = 0; k < detours.size(); ++k)
   {
     const int computed =

@@ -354,6 +354,17 @@ TEST(SegmentationSweep, CrossingPathsAreFoundAgainApart)
 {
   EXPECT_EQ(prepareAndCheck(segmented(tissueModel("LongitudinalTear"), sweepCase(1005)), true), "");
 }
+// On a rough rim a side path can run along a whole rim path and on
+// through the other border vertex's rim point (longitudinal tear, seed
+// 1010: path 210 along rim path 30). Separating touching paths moved the
+// rim path off the shared run and the side path around that rim point,
+// and the two detours crossed ("paths 30 and 210 cross inside triangle
+// 6552"). The side paths are now moved first and the rim paths (the
+// equator) stay where they are; the tear prepares, binds and takes a press.
+TEST(SegmentationSweep, SidePathsMoveOffTheRimPathsTheyTouch)
+{
+  EXPECT_EQ(prepareAndCheck(segmented(tissueModel("LongitudinalTear"), sweepCase(1010)), true), "");
+}
 // A segmentation sharpens the meniscus's inner rim into a wedge that thins
 // slower than a quarter of a radius per unit outward: border collision
 // vertex 6 sat where the tissue still had a radius (0.16 mm) and its rim
