@@ -16,6 +16,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <sstream>
 #include <tuple>
 #include <unordered_map>
 
@@ -1926,6 +1927,31 @@ double straightness(const SurfacePath& path, const std::vector<Vector3>& positio
   return path.length / std::max(ends, 1e-300);
 }
 
+/// The crossing, rethrown with how far the straying path runs between its
+/// ends when that is well over their distance: it goes round an opening of
+/// the visual surface that the collision mesh spans (a tear's gap the
+/// outline split in two, a perforated sheet), which no re-routing mends.
+[[noreturn]] void throwCrossing(const PathsCrossError& crossing,
+  const SurfacePath& path,
+  int index,
+  const std::vector<Vector3>& positions)
+{
+  const double ends =
+    (path.points.back().position(positions) - path.points.front().position(positions)).norm();
+  if (!(path.length > 1.5 * ends))
+  {
+    throw crossing;
+  }
+  std::ostringstream text;
+  text.precision(3);
+  text << crossing.what() << "; path " << index << " runs " << path.length << " between ends "
+       << ends
+       << " apart: the collision mesh may span an opening of the visual surface (a tear's gap "
+          "or a perforation its outline does not follow)";
+  throw PathsCrossError(
+    text.str(), crossing.firstPath(), crossing.secondPath(), crossing.triangle());
+}
+
 /// insertPaths, with paths that cross found again (paths may touch, never
 /// cross: 5.2.3). Shortest paths cross where the rim is rough: a rim path
 /// whose ends sit on either side of a notch runs over the face and across
@@ -1963,7 +1989,7 @@ RemeshedSurface insertUncrossedPaths(const TriangleMesh& mesh,
       const std::vector<char>* region = regionOf(again);
       if (region == nullptr || attempt == 16)
       {
-        throw;
+        throwCrossing(crossing, paths[again], again, mesh.positions);
       }
       // Off every path it was found again around so far (else two
       // neighbours can send it back and forth).
@@ -1997,7 +2023,7 @@ RemeshedSurface insertUncrossedPaths(const TriangleMesh& mesh,
       }
       catch (const InvalidInputError&)
       {
-        throw crossing;
+        throwCrossing(crossing, paths[again], again, mesh.positions);
       }
       detours[again] += static_cast<int>(paths[other].points.size());
     }
