@@ -511,10 +511,12 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
   std::sort(claims.begin(),
     claims.end(),
     [](const Claim& p, const Claim& q) { return p.vertex < q.vertex; });
+  context.copies.clear();
   for (std::size_t i = 0; i < claims.size();)
   {
     std::size_t j = i;
     const int v = claims[i].vertex;
+    const std::size_t copiesOfV = context.copies.size();
     const VisualVertexBinding original = Bindings[v];
     bool rootAlive = false;
     if (original.kind == BindingKind::CollisionVertex)
@@ -529,10 +531,14 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
       const Claim& claim = claims[j];
       const int code =
         claim.element >= 0 ? 2 * claim.element : 2 * edgeIndex(claim.edge[0], claim.edge[1]) + 1;
-      auto [it, added] = context.copies.emplace(std::make_pair(v, code), -1);
-      if (added)
+      const std::uint64_t key = CutContext::copyKey(v, code);
+      auto it = std::find_if(context.copies.begin() + copiesOfV,
+        context.copies.end(),
+        [key](const std::pair<std::uint64_t, int>& entry) { return entry.first == key; });
+      if (it == context.copies.end())
       {
-        it->second = rootAlive ? addVertexCopy(v) : v;
+        context.copies.emplace_back(key, rootAlive ? addVertexCopy(v) : v);
+        it = context.copies.end() - 1;
         rootAlive = true; // the vertex itself serves the first claim at most
         const int w = it->second;
         if (w != v)
@@ -561,6 +567,7 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
     }
     i = j;
   }
+  std::sort(context.copies.begin(), context.copies.end());
 }
 
 // The paths of the edges the opening made: the paths they were copied
@@ -596,8 +603,7 @@ void CuttableVisualMesh::updateEdgePaths(const CuttableCollisionMesh& collision,
           const int r = context.root(b.element);
           code = 2 * (r == rx ? x : (r == ry ? y : b.element));
         }
-        const auto copy = context.copies.find({ w, code });
-        return copy == context.copies.end() ? w : copy->second;
+        return context.copyOf(w, code);
       };
       EdgePaths paths;
       paths.rim = found->second.rim;

@@ -5,7 +5,7 @@
 
 #include "VisualMeshCut.h"
 
-#include <map>
+#include <algorithm>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -80,8 +80,24 @@ struct CuttableVisualMesh::CutContext
   std::unordered_map<int, int> edgePointOf; ///< collision vertex -> edgePoints
   std::vector<RegionCut> regions;
   /// (visual vertex, element code) -> the visual vertex serving it: codes
-  /// 2 v for collision vertex v, 2 e + 1 for collision edge e.
-  std::map<std::pair<int, int>, int> copies;
+  /// 2 v for collision vertex v, 2 e + 1 for collision edge e. Keys
+  /// (vertex << 32 | code), sorted once the opening has made them all (a
+  /// vector, not a map: a cut makes hundreds).
+  std::vector<std::pair<std::uint64_t, int>> copies;
+  static std::uint64_t copyKey(int vertex, int code)
+  {
+    return (static_cast<std::uint64_t>(vertex) << 32) | static_cast<std::uint32_t>(code);
+  }
+  /// The visual vertex serving (w, code): its copy, or w itself.
+  int copyOf(int w, int code) const
+  {
+    const std::uint64_t key = copyKey(w, code);
+    const auto at = std::lower_bound(copies.begin(),
+      copies.end(),
+      key,
+      [](const std::pair<std::uint64_t, int>& entry, std::uint64_t k) { return entry.first < k; });
+    return at != copies.end() && at->first == key ? at->second : w;
+  }
   /// Cut strips to rebuild (edge keys).
   std::vector<std::uint64_t> strips;
   std::vector<int> newVertices;
