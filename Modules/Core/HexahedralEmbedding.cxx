@@ -237,18 +237,7 @@ bool invertTrilinearMap(const HexahedronCorners& c, const Vector3& point, Vector
     return false;
   }
   Vector3 l = Vector3::Constant(0.5);
-  if (map.isAffine())
-  {
-    // A parallelepiped (every cell of a grid at rest): the map is linear
-    // and one solve is exact; Newton took two steps and two inverses.
-    const Eigen::Matrix3d jacobian = map.jacobian(l);
-    if (!(std::abs(jacobian.determinant()) > 1e-14 * scale * scale * scale))
-    {
-      return false;
-    }
-    l = jacobian.inverse() * target;
-  }
-  for (int iteration = 0; iteration < 60 && !map.isAffine(); ++iteration)
+  for (int iteration = 0; iteration < 60; ++iteration)
   {
     const Vector3 residual = map.relativePoint(l) - target;
     const Eigen::Matrix3d jacobian = map.jacobian(l);
@@ -259,8 +248,9 @@ bool invertTrilinearMap(const HexahedronCorners& c, const Vector3& point, Vector
     }
     Vector3 step = jacobian.inverse() * residual;
     const double length = step.norm();
-    // Damp huge steps: far from the cell Newton may otherwise oscillate.
-    if (length > 2.0)
+    // Damp huge steps: far from the cell Newton may otherwise oscillate
+    // (an affine map's step is exact wherever it starts).
+    if (length > 2.0 && !map.isAffine())
     {
       step *= 2.0 / length;
     }
@@ -269,7 +259,9 @@ bool invertTrilinearMap(const HexahedronCorners& c, const Vector3& point, Vector
     {
       return false;
     }
-    if (length <= 1e-13)
+    // A parallelepiped (every cell of a grid at rest) has an affine map:
+    // the first step is exact, and a second would only confirm it.
+    if (length <= 1e-13 || map.isAffine())
     {
       break;
     }
