@@ -76,14 +76,26 @@ Vector3 outwardAcross(const CuttableCollisionMesh& collision, int a, int b)
 
 /// Where a smooth cut puts the vertex of row fraction s (0 at the + path,
 /// 1 at the - path) at edge parameter u: between the two paths (5.3.4).
+/// `paths` and `at`: the - path then the + path, and their parameters.
 Vector3 betweenPaths(const std::vector<Vector3>& positions,
-  const std::array<std::vector<int>, 2>& sides,
+  const std::array<const std::vector<int>*, 2>& paths,
   const std::array<std::vector<double>, 2>& at,
   double u,
   double s)
 {
-  return (1.0 - s) * pointAt(positions, sides[1], at[1], u) +
-         s * pointAt(positions, sides[0], at[0], u);
+  return (1.0 - s) * pointAt(positions, *paths[1], at[1], u) +
+         s * pointAt(positions, *paths[0], at[0], u);
+}
+
+/// Entry r (0-based) of a strip's `rowCount` inner rows on a column of the
+/// end (from its + paired vertex to its - one): a column with fewer entries
+/// than the strip has rows (a plain vertex's, where the strip's other end
+/// is a junction vertex's full one) is shared by neighbouring rows.
+int columnEntry(const std::vector<int>& column, std::size_t r, std::size_t rowCount)
+{
+  const double at =
+    static_cast<double>(r + 1) * static_cast<double>(column.size() - 1) / (rowCount + 1);
+  return column[static_cast<std::size_t>(std::lround(at))];
 }
 
 } // namespace
@@ -100,6 +112,7 @@ void CuttableVisualMesh::splitStrip(std::uint64_t key,
   for (int t : strip.triangles)
     freeTriangle(t);
   CutStrip first, second;
+  first.cleft = second.cleft = strip.cleft;
   for (const auto& row : strip.rows)
   {
     std::vector<int> before, after;
@@ -126,35 +139,347 @@ void CuttableVisualMesh::splitStrip(std::uint64_t key,
   Strips[edgeKey(b, middle)] = std::move(second);
 }
 
-const std::vector<int>& CuttableVisualMesh::endColumn(int collisionVertex, const Vector3& outward)
+namespace
+{
+
+/// Whether a leaf at junction vertex v is cut there (has an edge of one
+/// triangle at v): the cleft's crease then lies on the cut surface. A cut
+/// through the body alone leaves the crease inside the cleft's walls.
+bool creaseOnTheCut(const CuttableCollisionMesh& collision, int v)
+{
+  const auto& halves = collision.halves();
+  for (int T : collision.trianglesOfVertex(v))
+  {
+    if (halves[T][0] != SurfaceHalf::Cleft && halves[T][1] != SurfaceHalf::Cleft)
+      continue;
+    const Triangle& corners = collision.triangles()[T];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int x = corners[k], y = corners[(k + 1) % 3];
+      if ((x == v || y == v) && collision.trianglesOfEdge(x, y)[1] < 0)
+        return true;
+    }
+  }
+  return false;
+}
+
+} // namespace
+
+CuttableVisualMesh::EndColumn& CuttableVisualMesh::endColumn(const CuttableCollisionMesh& collision,
+  int collisionVertex)
 {
   auto [it, added] = EndColumns.emplace(collisionVertex, EndColumn{});
-  std::vector<int>& column = it->second.vertices;
+  EndColumn& column = it->second;
   if (!added)
     return column;
-  const int minus = Paired[collisionVertex][0], plus = Paired[collisionVertex][1];
-  const int rows = Settings.cutSurfaceRows;
-  it->second.rim = minus == plus;
-  for (int r = 0; r < rows; ++r)
+  const std::array<int, 3>& paired = Paired[collisionVertex];
+  const auto rows = static_cast<std::size_t>(Settings.cutSurfaceRows);
+  column.rim = paired[0] == paired[1];
+  column.throughCrease = paired[CreaseSlot] >= 0 && creaseOnTheCut(collision, collisionVertex);
+  if (column.rim)
+    column.vertices.assign(rows, paired[1]); // on the rim both sides meet
+  else if (column.throughCrease)
   {
-    if (minus == plus)
-    {
-      column.push_back(plus); // on the rim both sides meet
-      continue;
-    }
-    const double s = static_cast<double>(r + 1) / (rows + 1);
-    const int w = addVertexCopy(plus);
-    Mesh.positions[w] = (1.0 - s) * Mesh.positions[plus] + s * Mesh.positions[minus];
-    Mesh.positions[w] += jaggedOffset(Mesh.positions[w], outward);
-    if (Mesh.hasNormals())
-      Mesh.normals[w] = outward;
-    Bindings[w].kind = BindingKind::CollisionVertex;
-    Bindings[w].element = collisionVertex;
-    Bindings[w].side = 0;
-    Bindings[w].parameters = Vector3(1.0, 0.0, 0.0);
-    column.push_back(w);
+    // + to crease, the crease, crease to -: the body's strip runs through
+    // all of it, each leaf's through its half. Entries are made when a
+    // strip needs them (a junction vertex left with one leaf needs half).
+    column.vertices.assign(2 * rows + 1, -1);
+    column.vertices[rows] = paired[CreaseSlot];
   }
+  else
+    column.vertices.assign(rows, -1);
   return column;
+}
+
+int CuttableVisualMesh::columnVertex(int collisionVertex, int index, const Vector3& outward)
+{
+  int& entry = EndColumns.at(collisionVertex).vertices[static_cast<std::size_t>(index)];
+  if (entry >= 0)
+    return entry;
+  const int w = addVertexCopy(Paired[collisionVertex][1]);
+  Mesh.positions[w] = columnPlace(collisionVertex, index);
+  Mesh.positions[w] += jaggedOffset(Mesh.positions[w], outward);
+  if (Mesh.hasNormals())
+    Mesh.normals[w] = outward;
+  Bindings[w].kind = BindingKind::CollisionVertex;
+  Bindings[w].element = collisionVertex;
+  Bindings[w].side = 0;
+  Bindings[w].parameters = Vector3(1.0, 0.0, 0.0);
+  entry = w;
+  return w;
+}
+
+bool CuttableVisualMesh::stripSides(const CuttableCollisionMesh& collision,
+  int a,
+  int b,
+  int& lip,
+  std::array<bool, 2>& cleft) const
+{
+  const auto paths = Paths.find(edgeKey(a, b));
+  if (paths == Paths.end() || paths->second.rim)
+    return false;
+  const auto lips = collision.trianglesOfEdge(a, b);
+  if (lips[0] >= 0 && lips[1] < 0)
+  {
+    lip = lips[0];
+    cleft = { { facesCleft(collision, lip, 0), facesCleft(collision, lip, 1) } };
+    return true;
+  }
+  // A fold: the two leaves left on a junction edge their body was cut off
+  // along. Their strip joins the top to the bottom in front of the crease
+  // (which stays between the cleft's walls); its lip is the upper leaf.
+  if (!paths->second.junction() || lips[1] < 0 || lips[2] >= 0)
+    return false;
+  for (int k = 0; k < 2; ++k)
+  {
+    const int upper = lips[k], lower = lips[1 - k];
+    if (facesCleft(collision, upper, 0) && !facesCleft(collision, upper, 1) &&
+        facesCleft(collision, lower, 1) && !facesCleft(collision, lower, 0))
+    {
+      lip = upper;
+      cleft = { { false, false } };
+      return true;
+    }
+  }
+  return false;
+}
+
+bool CuttableVisualMesh::bodyColumnUsesCrease(const CuttableCollisionMesh& collision, int v) const
+{
+  const auto column = EndColumns.find(v);
+  if (column == EndColumns.end() || !column->second.throughCrease)
+    return false;
+  const std::vector<bool> needed = columnNeeds(collision, v);
+  return needed[static_cast<std::size_t>(Settings.cutSurfaceRows)];
+}
+
+std::vector<bool> CuttableVisualMesh::columnNeeds(const CuttableCollisionMesh& collision,
+  int v) const
+{
+  const EndColumn& column = EndColumns.at(v);
+  std::vector<bool> needed(column.vertices.size(), false);
+  const auto inner = static_cast<int>(column.vertices.size());
+  for (int T : collision.trianglesOfVertex(v))
+  {
+    const Triangle& corners = collision.triangles()[T];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int x = corners[k], y = corners[(k + 1) % 3];
+      int lip = -1;
+      std::array<bool, 2> cleft{ { false, false } };
+      if ((x != v && y != v) || !stripSides(collision, x, y, lip, cleft))
+        continue;
+      // The strip there spans its lip's + paired vertex to its - one.
+      auto position = [&](int side)
+      {
+        const int slot = pairedSlot(v, side, cleft[side]);
+        if (slot == 1)
+          return 0;
+        return slot == CreaseSlot && column.throughCrease ? Settings.cutSurfaceRows + 1 : inner + 1;
+      };
+      for (int i = position(1) + 1; i < position(0); ++i)
+        needed[static_cast<std::size_t>(i - 1)] = true;
+    }
+  }
+  return needed;
+}
+
+// A copy made by this cut takes over the column entries its root no longer
+// needs and it does (the strips that used them moved to it), so that no
+// cut-surface vertex is left without a triangle.
+void CuttableVisualMesh::handOverColumns(const CuttableCollisionMesh& collision,
+  CutContext& context)
+{
+  for (std::size_t i = 0; i < context.originalOf.size(); ++i)
+  {
+    const int root = context.originalOf[i];
+    const int copy = context.firstCopy + static_cast<int>(i);
+    const auto rootColumn = EndColumns.find(root);
+    if (root < 0 || rootColumn == EndColumns.end() || rootColumn->second.rim ||
+        collision.trianglesOfVertex(copy).empty())
+      continue;
+    const std::vector<bool> rootNeeds = columnNeeds(collision, root);
+    EndColumn& copyColumn = endColumn(collision, copy);
+    if (copyColumn.vertices.size() != rootColumn->second.vertices.size())
+      continue;
+    const std::vector<bool> copyNeeds = columnNeeds(collision, copy);
+    for (std::size_t e = 0; e < copyNeeds.size(); ++e)
+    {
+      int& from = rootColumn->second.vertices[e];
+      int& to = copyColumn.vertices[e];
+      if (from < 0 || rootNeeds[e] || !copyNeeds[e] || to >= 0 || from == Paired[root][CreaseSlot])
+        continue;
+      to = from;
+      from = -1;
+      Bindings[to].element = copy;
+      context.rebound.push_back(to);
+    }
+  }
+}
+
+// A junction vertex whose column was made for a cut through its body alone
+// (passing the crease by), and whose leaves are cut there now: the column
+// runs through the crease from now on, so the strips at the vertex get the
+// rows it has grown by, and are rebuilt.
+void CuttableVisualMesh::upgradeColumns(const CuttableCollisionMesh& collision,
+  std::vector<std::array<int, 2>>& edges,
+  CutContext& context)
+{
+  const std::size_t edgeCount = edges.size();
+  for (std::size_t e = 0; e < edgeCount; ++e)
+  {
+    const std::array<int, 2> ends = edges[e]; // addStripsAt appends to edges
+    for (const int v : ends)
+    {
+      const auto found = EndColumns.find(v);
+      if (found == EndColumns.end() || found->second.rim || found->second.throughCrease ||
+          Paired[v][CreaseSlot] < 0 || !creaseOnTheCut(collision, v))
+        continue;
+      EndColumn& column = found->second;
+      const auto rows = static_cast<std::size_t>(Settings.cutSurfaceRows);
+      std::vector<Vector3> offsets; // the jagged offsets, kept
+      for (std::size_t i = 0; i < column.vertices.size(); ++i)
+        offsets.push_back(column.vertices[i] < 0 ? Vector3::Zero().eval()
+                                                 : Mesh.positions[column.vertices[i]] -
+                                                     columnPlace(v, static_cast<int>(i)));
+      column.throughCrease = true;
+      column.vertices.resize(2 * rows + 1, -1);
+      column.vertices[rows] = Paired[v][CreaseSlot];
+      for (std::size_t i = 0; i < rows; ++i)
+        if (column.vertices[i] >= 0)
+        {
+          Mesh.positions[column.vertices[i]] = columnPlace(v, static_cast<int>(i)) + offsets[i];
+          context.rebound.push_back(column.vertices[i]);
+        }
+      addStripsAt(collision, v, edges);
+    }
+  }
+}
+
+void CuttableVisualMesh::addStripsAt(const CuttableCollisionMesh& collision,
+  int v,
+  std::vector<std::array<int, 2>>& edges) const
+{
+  for (int T : collision.trianglesOfVertex(v))
+  {
+    const Triangle& corners = collision.triangles()[T];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int x = std::min(corners[k], corners[(k + 1) % 3]);
+      const int y = std::max(corners[k], corners[(k + 1) % 3]);
+      if ((x == v || y == v) && Strips.count(edgeKey(x, y)))
+        edges.push_back({ { x, y } });
+    }
+  }
+}
+
+int CuttableVisualMesh::stripRowCount(const CuttableCollisionMesh& collision,
+  int a,
+  int b,
+  const CutStrip& strip)
+{
+  const auto spanA = columnSpan(collision, a, strip.cleft);
+  const auto spanB = columnSpan(collision, b, strip.cleft);
+  return std::max(spanA[1] - spanA[0], spanB[1] - spanB[0]) - 1;
+}
+
+void CuttableVisualMesh::growStrip(const CuttableCollisionMesh& collision,
+  int a,
+  int b,
+  CutStrip& strip,
+  CutContext& context)
+{
+  const auto rowCount = static_cast<std::size_t>(stripRowCount(collision, a, b, strip));
+  const std::size_t old = strip.rows.size();
+  if (old >= rowCount)
+    return;
+  // The old rows keep their places among the new (at fractions (r + 1) /
+  // (old + 1) of the way between the paths; the new count is 2 old + 1).
+  std::vector<std::vector<int>> rows(rowCount);
+  for (std::size_t r = 0; r < old; ++r)
+  {
+    const double at =
+      static_cast<double>(r + 1) * static_cast<double>(rowCount + 1) / static_cast<double>(old + 1);
+    const auto index = static_cast<std::size_t>(std::max(1L, std::lround(at))) - 1;
+    rows[std::min(index, rowCount - 1)] = std::move(strip.rows[r]);
+  }
+  strip.rows = std::move(rows);
+  makeStripRows(collision, a, b, static_cast<int>(rowCount), strip, context);
+}
+
+Vector3 CuttableVisualMesh::columnPlace(int v, int index) const
+{
+  const std::array<int, 3>& paired = Paired[v];
+  const int rows = Settings.cutSurfaceRows;
+  int from = paired[1], to = paired[0], r = index;
+  if (EndColumns.at(v).throughCrease)
+  {
+    if (index == rows)
+      return Mesh.positions[paired[CreaseSlot]];
+    if (index < rows)
+      to = paired[CreaseSlot];
+    else
+    {
+      from = paired[CreaseSlot];
+      r = index - rows - 1;
+    }
+  }
+  const double s = static_cast<double>(r + 1) / (rows + 1);
+  return (1.0 - s) * Mesh.positions[from] + s * Mesh.positions[to];
+}
+
+std::array<int, 2> CuttableVisualMesh::columnSpan(const CuttableCollisionMesh& collision,
+  int v,
+  const std::array<bool, 2>& cleft)
+{
+  // Positions in the column with its ends: 0 the + paired vertex, then the
+  // inner entries, then the - paired vertex.
+  const EndColumn& column = endColumn(collision, v);
+  const auto inner = static_cast<int>(column.vertices.size());
+  auto position = [&](int slot)
+  {
+    if (slot == 1)
+      return 0;
+    if (slot != CreaseSlot)
+      return inner + 1;
+    if (!column.throughCrease)
+    {
+      throw Error("visual cut of '" + Mesh.name +
+                  "': a leaf's cut surface reaches junction "
+                  "vertex " +
+                  std::to_string(v) + " after a cut through its body alone");
+    }
+    return Settings.cutSurfaceRows + 1;
+  };
+  return { { position(pairedSlot(v, 1, cleft[1])), position(pairedSlot(v, 0, cleft[0])) } };
+}
+
+std::vector<int> CuttableVisualMesh::stripColumn(const CuttableCollisionMesh& collision,
+  int v,
+  const std::array<bool, 2>& cleft,
+  const Vector3& outward)
+{
+  const auto [first, last] = columnSpan(collision, v, cleft);
+  const auto inner = static_cast<int>(EndColumns.at(v).vertices.size());
+  std::vector<int> part;
+  part.reserve(static_cast<std::size_t>(last - first + 1));
+  for (int i = first; i <= last; ++i)
+  {
+    if (i == 0 || i == inner + 1)
+      part.push_back(Paired[v][i == 0 ? 1 : 0]);
+    else
+      part.push_back(columnVertex(v, i - 1, outward));
+  }
+  return part;
+}
+
+std::array<const std::vector<int>*, 2> CuttableVisualMesh::stripPaths(int a,
+  int b,
+  const CutStrip& strip) const
+{
+  const EdgePaths& paths = Paths.at(edgeKey(a, b));
+  return { { &paths.sides[pathSlot(paths, 0, strip.cleft[0])],
+    &paths.sides[pathSlot(paths, 1, strip.cleft[1])] } };
 }
 
 /// The part of an opened edge's path the cut surface joins: where two cuts
@@ -181,22 +506,34 @@ void CuttableVisualMesh::buildStrip(const CuttableCollisionMesh& collision,
   for (int t : strip.triangles)
     freeTriangle(t);
   strip.triangles.clear();
-  const int region = collision.trianglesOfEdge(a, b)[0];
+  int region = -1;
+  std::array<bool, 2> cleft;
+  if (!stripSides(collision, a, b, region, cleft))
+    region = collision.trianglesOfEdge(a, b)[0];
   const Vector3 outward = outwardAcross(collision, a, b);
-  const EdgePaths& paths = Paths.at(edgeKey(a, b));
-  std::vector<std::vector<int>> rows;
-  rows.push_back(openPart(paths.sides[1], a, b));
-  for (std::size_t r = 0; r < strip.rows.size(); ++r)
+  const auto paths = stripPaths(a, b, strip);
+  const std::vector<int> columnA = stripColumn(collision, a, strip.cleft, outward);
+  const std::vector<int> columnB = stripColumn(collision, b, strip.cleft, outward);
+  const std::size_t rowCount = strip.rows.size();
+  if (std::max(columnA.size(), columnB.size()) > rowCount + 2)
   {
-    std::vector<int> row{ endColumn(a, outward)[r] };
+    throw Error("visual cut of '" + Mesh.name + "': the cut surface on collision edge (" +
+                std::to_string(a) + ", " + std::to_string(b) + ") has fewer rows than its end " +
+                "columns");
+  }
+  std::vector<std::vector<int>> rows;
+  rows.push_back(openPart(*paths[1], a, b));
+  for (std::size_t r = 0; r < rowCount; ++r)
+  {
+    std::vector<int> row{ columnEntry(columnA, r, rowCount) };
     row.insert(row.end(), strip.rows[r].begin(), strip.rows[r].end());
     for (int w : strip.rows[r])
       if (Mesh.hasNormals())
         Mesh.normals[w] = outward;
-    row.push_back(endColumn(b, outward)[r]);
+    row.push_back(columnEntry(columnB, r, rowCount));
     rows.push_back(std::move(row));
   }
-  rows.push_back(openPart(paths.sides[0], a, b));
+  rows.push_back(openPart(*paths[0], a, b));
   std::vector<std::vector<double>> at(rows.size());
   for (std::size_t r = 0; r < rows.size(); ++r)
     at[r] = pathParameters(rows[r], a, b);
@@ -239,6 +576,49 @@ void CuttableVisualMesh::buildStrip(const CuttableCollisionMesh& collision,
   }
 }
 
+void CuttableVisualMesh::makeStripRows(const CuttableCollisionMesh& collision,
+  int a,
+  int b,
+  int rowCount,
+  CutStrip& strip,
+  CutContext& context)
+{
+  // Up-sampling: the rows take the parameters of both sides.
+  const auto paths = stripPaths(a, b, strip);
+  std::array<std::vector<double>, 2> at;
+  std::vector<double> all;
+  for (int side = 0; side < 2; ++side)
+  {
+    at[side] = pathParameters(*paths[side], a, b);
+    for (double t : at[side])
+      if (t > ColumnMerge && t < 1.0 - ColumnMerge)
+        all.push_back(t);
+  }
+  std::sort(all.begin(), all.end());
+  // Both sides often share a parameter (up to round-off): one column.
+  all.erase(
+    std::unique(
+      all.begin(), all.end(), [](double x, double y) { return std::abs(x - y) < ColumnMerge; }),
+    all.end());
+  strip.rows.resize(static_cast<std::size_t>(rowCount));
+  const Vector3 outward = outwardAcross(collision, a, b);
+  for (int r = 0; r < rowCount; ++r)
+  {
+    if (!strip.rows[r].empty())
+      continue; // kept by growStripRows
+    const double s = static_cast<double>(r + 1) / (rowCount + 1);
+    for (double u : all)
+    {
+      const Vector3 smooth = betweenPaths(Mesh.positions, paths, at, u, s);
+      const int w = addVertexCopy((*paths[1])[1]);
+      Mesh.positions[w] = smooth + jaggedOffset(smooth, outward);
+      bindToEdge(w, a, b, u, 0);
+      strip.rows[r].push_back(w);
+      context.newVertices.push_back(w);
+    }
+  }
+}
+
 void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision,
   CutContext& context)
 {
@@ -255,55 +635,32 @@ void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision
              std::array<int, 2>{ { std::min(context.root(x), context.root(y)),
                std::max(context.root(x), context.root(y)) } } })
       {
-        const auto lips = collision.trianglesOfEdge(a, b);
-        if (lips[0] >= 0 && lips[1] < 0 && !Paths.at(edgeKey(a, b)).rim)
+        int lip = -1;
+        std::array<bool, 2> cleft;
+        if (stripSides(collision, a, b, lip, cleft))
           edges.push_back({ { a, b } });
       }
     }
   }
+  handOverColumns(collision, context);
+  upgradeColumns(collision, edges, context);
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  const int rows = Settings.cutSurfaceRows;
   for (const auto& [a, b] : edges)
   {
+    const std::size_t before = Mesh.vertexCount();
     auto [it, added] = Strips.emplace(edgeKey(a, b), CutStrip{});
     CutStrip& strip = it->second;
     if (added)
     {
-      // Up-sampling: the rows take the parameters of both sides.
-      const EdgePaths& paths = Paths.at(edgeKey(a, b));
-      std::array<std::vector<double>, 2> at;
-      std::vector<double> all;
-      for (int side = 0; side < 2; ++side)
-      {
-        at[side] = pathParameters(paths.sides[side], a, b);
-        for (double t : at[side])
-          if (t > ColumnMerge && t < 1.0 - ColumnMerge)
-            all.push_back(t);
-      }
-      std::sort(all.begin(), all.end());
-      // Both sides often share a parameter (up to round-off): one column.
-      all.erase(
-        std::unique(
-          all.begin(), all.end(), [](double x, double y) { return std::abs(x - y) < ColumnMerge; }),
-        all.end());
-      strip.rows.resize(static_cast<std::size_t>(rows));
-      const Vector3 outward = outwardAcross(collision, a, b);
-      for (int r = 0; r < rows; ++r)
-      {
-        const double s = static_cast<double>(r + 1) / (rows + 1);
-        for (double u : all)
-        {
-          const Vector3 smooth = betweenPaths(Mesh.positions, paths.sides, at, u, s);
-          const int w = addVertexCopy(paths.sides[1][1]);
-          Mesh.positions[w] = smooth + jaggedOffset(smooth, outward);
-          bindToEdge(w, a, b, u, 0);
-          strip.rows[r].push_back(w);
-          context.newVertices.push_back(w);
-        }
-      }
+      int lip = -1;
+      stripSides(collision, a, b, lip, strip.cleft);
+      // As many rows as the longer end column has inner entries (a body's
+      // strip at a junction vertex runs + -> crease -> -).
+      makeStripRows(collision, a, b, stripRowCount(collision, a, b, strip), strip, context);
     }
-    const std::size_t before = Mesh.vertexCount();
+    else
+      growStrip(collision, a, b, strip, context); // an end column grew
     buildStrip(collision, a, b, strip);
     for (std::size_t w = before; w < Mesh.vertexCount(); ++w)
       context.newVertices.push_back(static_cast<int>(w));
@@ -317,9 +674,9 @@ void CuttableVisualMesh::smoothPlaces(std::uint64_t key,
   std::vector<SmoothPlace>& places) const
 {
   const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-  const EdgePaths& paths = Paths.at(key);
-  const std::array<std::vector<double>, 2> at{ { pathParameters(paths.sides[0], a, b),
-    pathParameters(paths.sides[1], a, b) } };
+  const auto paths = stripPaths(a, b, strip);
+  const std::array<std::vector<double>, 2> at{ { pathParameters(*paths[0], a, b),
+    pathParameters(*paths[1], a, b) } };
   const auto rows = static_cast<int>(strip.rows.size());
   for (int r = 0; r < rows; ++r)
   {
@@ -327,7 +684,7 @@ void CuttableVisualMesh::smoothPlaces(std::uint64_t key,
     for (int w : strip.rows[r])
     {
       const double u = edgeParameter(w, a, b);
-      places.push_back({ w, u, betweenPaths(Mesh.positions, paths.sides, at, u, s) });
+      places.push_back({ w, u, betweenPaths(Mesh.positions, paths, at, u, s) });
     }
   }
   // The columns at the edge's ends (shared with the strips meeting there).
@@ -336,14 +693,14 @@ void CuttableVisualMesh::smoothPlaces(std::uint64_t key,
     const auto column = EndColumns.find(end);
     if (column == EndColumns.end() || column->second.rim)
       continue;
-    const Vector3& plus = Mesh.positions[Paired[end][1]];
-    const Vector3& minus = Mesh.positions[Paired[end][0]];
     const std::vector<int>& vertices = column->second.vertices;
-    const auto count = static_cast<int>(vertices.size());
-    for (int r = 0; r < count; ++r)
+    for (std::size_t r = 0; r < vertices.size(); ++r)
     {
-      const double s = static_cast<double>(r + 1) / (count + 1);
-      places.push_back({ vertices[r], end == a ? 0.0 : 1.0, (1.0 - s) * plus + s * minus });
+      // A junction vertex's crease vertex belongs to the surface; entries
+      // no strip needed are not made.
+      if (vertices[r] >= 0 && vertices[r] != Paired[end][CreaseSlot])
+        places.push_back(
+          { vertices[r], end == a ? 0.0 : 1.0, columnPlace(end, static_cast<int>(r)) });
     }
   }
 }

@@ -115,7 +115,8 @@ std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, Cu
       VisualVertexBinding& b = Bindings[w];
       b.kind = BindingKind::CollisionVertex;
       b.element = common;
-      b.side = side;
+      // The crease's side label is 0 (CollisionSides::pathSide).
+      b.side = pairedSlot(common, region.side, region.cleft) == CreaseSlot ? 0 : side;
       b.parameters = Vector3(1.0, 0.0, 0.0);
     }
     onCut[local] = 1;
@@ -129,7 +130,8 @@ std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, Cu
       const auto found = context.edgePointOf.find(crossing.ends[end]);
       if (found != context.edgePointOf.end())
       {
-        context.edgePoints[found->second].visualVertex[region.side] =
+        EdgePoint& point = context.edgePoints[found->second];
+        point.visualVertex[point.junction ? region.junctionSlot() : region.side] =
           end == 0 ? crossing.vertices.front() : crossing.vertices.back();
       }
     }
@@ -370,11 +372,11 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
 // edge's paths split there (accumulated-length parameters rescaled).
 void CuttableVisualMesh::finishEdgePoints(CutContext& context)
 {
-  Paired.resize(context.collision->vertexCount(), { { -1, -1 } });
+  Paired.resize(context.collision->vertexCount(), { { -1, -1, -1 } });
   for (EdgePoint& point : context.edgePoints)
   {
     EdgePaths& paths = Paths.at(edgeKey(point.a, point.b));
-    for (int side = 0; side < 2; ++side)
+    for (int side = 0; side < point.slotCount(); ++side)
     {
       if (point.visualVertex[side] < 0 && point.visual[side].isVertex())
         point.visualVertex[side] = point.visual[side].vertex;
@@ -386,20 +388,20 @@ void CuttableVisualMesh::finishEdgePoints(CutContext& context)
                     std::to_string(point.vertex) + " on side " + std::to_string(side));
       }
     }
-    for (int side = 0; side < 2; ++side)
+    for (int side = 0; side < point.slotCount(); ++side)
     {
       const int w = point.visualVertex[side];
       Paired[point.vertex][side] = w;
       VisualVertexBinding& b = Bindings[w];
       b.kind = BindingKind::CollisionVertex;
       b.element = point.vertex;
-      b.side = point.rim ? 0 : (side > 0 ? 1 : -1);
+      b.side = point.rim || side == CreaseSlot ? 0 : (side > 0 ? 1 : -1);
       b.parameters = Vector3(1.0, 0.0, 0.0);
       context.rebound.push_back(w);
     }
     EdgePaths before, after;
     before.rim = after.rim = point.rim;
-    for (int side = 0; side < 2; ++side)
+    for (int side = 0; side < point.slotCount(); ++side)
     {
       std::vector<int> p = paths.sides[side];
       const int w = point.visualVertex[side];
@@ -413,7 +415,7 @@ void CuttableVisualMesh::finishEdgePoints(CutContext& context)
       {
         before.sides[1] = before.sides[0];
         after.sides[1] = after.sides[0];
-        break;
+        continue;
       }
       before.sides[side].assign(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(at) + 1);
       after.sides[side].assign(p.rbegin(), p.rend() - static_cast<std::ptrdiff_t>(at));
@@ -450,6 +452,63 @@ void CuttableVisualMesh::finishEdgePoints(CutContext& context)
 }
 
 //------------------------------------------------------------------------------
+// Whether a triangle still on the collision element visual vertex v is
+// bound to uses v, so that each claim on v needs a copy. On a manifold mesh
+// every triangle there does; at a horizontal cleavage's junction a triangle
+// sees only two of its three paths and paired vertices (a leaf left alone
+// there does not see the top's or the bottom's).
+bool CuttableVisualMesh::rootStillUses(const CuttableCollisionMesh& collision, int v) const
+{
+  const VisualVertexBinding& b = Bindings[v];
+  // The slot v serves, or -1 if every triangle there uses it.
+  int slot = -1;
+  std::array<int, 3> lips{ { -1, -1, -1 } };
+  const std::vector<int>* fan = nullptr;
+  const EdgePaths* paths = nullptr;
+  if (b.kind == BindingKind::CollisionVertex)
+  {
+    fan = &collision.trianglesOfVertex(b.element);
+    if (fan->empty())
+      return false;
+    const auto& paired = Paired[b.element];
+    if (paired[CreaseSlot] < 0)
+      return true;
+    for (int k = 0; k < 3; ++k)
+      slot = paired[k] == v ? k : slot;
+    // The body's cut surface there runs through the crease (its leaves were
+    // cut there): it keeps the crease vertex when the leaves leave.
+    if (slot == CreaseSlot && bodyColumnUsesCrease(collision, b.element))
+      return true;
+  }
+  else
+  {
+    const auto& e = Edges[b.element];
+    lips = collision.trianglesOfEdge(e[0], e[1]);
+    if (lips[0] < 0)
+      return false;
+    const auto found = Paths.find(edgeKey(e[0], e[1]));
+    if (found == Paths.end() || !found->second.junction())
+      return true;
+    paths = &found->second;
+    slot = b.side > 0 ? 1 : (b.side < 0 ? 0 : CreaseSlot);
+  }
+  if (slot < 0)
+    return true;
+  auto uses = [&](int T)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      const bool cleft = facesCleft(collision, T, side);
+      if ((paths ? pathSlot(*paths, side, cleft) : pairedSlot(b.element, side, cleft)) == slot)
+        return true;
+    }
+    return false;
+  };
+  if (fan)
+    return std::any_of(fan->begin(), fan->end(), uses);
+  return std::any_of(lips.begin(), lips.end(), [&](int T) { return T >= 0 && uses(T); });
+}
+
 // Where the collision mesh opened, the visual vertices bound to an opened
 // collision vertex or edge get one copy per side of the opening.
 void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, CutContext& context)
@@ -518,14 +577,7 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
     const int v = claims[i].vertex;
     const std::size_t copiesOfV = context.copies.size();
     const VisualVertexBinding original = Bindings[v];
-    bool rootAlive = false;
-    if (original.kind == BindingKind::CollisionVertex)
-      rootAlive = !collision.trianglesOfVertex(original.element).empty();
-    else
-    {
-      const auto& e = Edges[original.element];
-      rootAlive = collision.trianglesOfEdge(e[0], e[1])[0] >= 0;
-    }
+    bool rootAlive = rootStillUses(collision, v);
     for (; j < claims.size() && claims[j].vertex == v; ++j)
     {
       const Claim& claim = claims[j];
@@ -547,11 +599,17 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
         VisualVertexBinding& b = Bindings[w];
         if (claim.element >= 0)
         {
+          auto& paired = Paired[claim.element];
+          if (Paired[b.element][CreaseSlot] == v)
+            paired[CreaseSlot] = w;
+          else
+          {
+            const int sideIndex = b.side > 0 ? 1 : 0;
+            paired[sideIndex] = w;
+            if (b.side == 0)
+              paired[1 - sideIndex] = w;
+          }
           b.element = claim.element;
-          const int sideIndex = b.side > 0 ? 1 : 0;
-          Paired[claim.element][sideIndex] = w;
-          if (b.side == 0)
-            Paired[claim.element][1 - sideIndex] = w;
         }
         else
         {
@@ -608,7 +666,7 @@ void CuttableVisualMesh::updateEdgePaths(const CuttableCollisionMesh& collision,
       EdgePaths paths;
       paths.rim = found->second.rim;
       const bool reverse = (rx < ry) != (x < y);
-      for (int side = 0; side < 2; ++side)
+      for (int side = 0; side < 3; ++side)
       {
         for (int w : found->second.sides[side])
           paths.sides[side].push_back(mapped(w));
@@ -638,6 +696,38 @@ void CuttableVisualMesh::updateEdgePaths(const CuttableCollisionMesh& collision,
   }
   for (std::uint64_t key : gone)
     Paths.erase(key);
+}
+
+// A junction edge the opening left with one triangle is an edge of one
+// sheet: it keeps the two paths that triangle sees as its - and + paths (a
+// lower leaf's + path is the crease's), so that later cuts and its cut
+// surface treat it as any edge.
+void CuttableVisualMesh::dropUnseenJunctionPaths(const CuttableCollisionMesh& collision,
+  CutContext& context)
+{
+  for (int T : context.cut->changedTriangles)
+  {
+    const Triangle& tri = collision.triangles()[T];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int x = tri[k], y = tri[(k + 1) % 3];
+      for (const std::uint64_t key : { edgeKey(x, y), edgeKey(context.root(x), context.root(y)) })
+      {
+        const auto found = Paths.find(key);
+        if (found == Paths.end() || !found->second.junction())
+          continue;
+        const auto lips = collision.trianglesOfEdge(
+          static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu));
+        if (lips[0] < 0 || lips[1] >= 0)
+          continue;
+        EdgePaths& paths = found->second;
+        std::array<std::vector<int>, 3> seen;
+        for (int side = 0; side < 2; ++side)
+          seen[side] = paths.sides[pathSlot(paths, side, facesCleft(collision, lips[0], side))];
+        paths.sides = std::move(seen);
+      }
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -676,6 +766,7 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   finishEdgePoints(context);
   openVisualMesh(collision, context);
   updateEdgePaths(collision, context);
+  dropUnseenJunctionPaths(collision, context);
   const auto cutSurfaceStart = std::chrono::steady_clock::now();
   updateCutSurface(collision, context);
   result.cutSurfaceMilliseconds =

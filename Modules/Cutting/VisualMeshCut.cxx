@@ -381,29 +381,29 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
   , Edges(binding.collisionEdges)
   , TriangleRegion(binding.triangleRegion)
   , TriangleSide(binding.triangleSide)
-  , Paired(binding.pairedVisualVertices)
 {
   const std::string label = "visual mesh '" + Mesh.name + "'";
   checkSettings(label, settings);
+  const std::size_t collisionVertices = binding.collisionPositions.size();
   if (Bindings.size() != Mesh.vertexCount() || TriangleRegion.size() != Mesh.triangleCount() ||
       TriangleSide.size() != Mesh.triangleCount() ||
-      Paired.size() != binding.collisionPositions.size())
+      binding.pairedVisualVertices.size() != collisionVertices ||
+      (!binding.creaseVisualVertices.empty() &&
+        binding.creaseVisualVertices.size() != collisionVertices))
   {
     throw InvalidInputError(label + ": the binding does not match its visual mesh");
   }
-  if (binding.collisionSides.hasJunctions())
-  {
-    // The collision cut handles a junction; the visual cut's third side
-    // (the cleft's crease paths and end columns) is not made yet.
-    throw InvalidInputError(label +
-                            ": its collision mesh has a horizontal cleavage's junction (edges of "
-                            "three triangles): cutting its visual mesh is not supported yet");
-  }
   TriangleMaterial.assign(Mesh.triangleCount(), VisualMaterial::Surface);
   reserveRoom();
-  // The binding pairs (+, -); here sides are indexed - then +, as paths.
-  for (auto& pair : Paired)
-    std::swap(pair[0], pair[1]);
+  // The binding pairs (+, -); here slots are - then +, as paths, then the
+  // crease's.
+  Paired.resize(collisionVertices);
+  for (std::size_t v = 0; v < collisionVertices; ++v)
+  {
+    const auto& pair = binding.pairedVisualVertices[v];
+    const int crease = binding.creaseVisualVertices.empty() ? -1 : binding.creaseVisualVertices[v];
+    Paired[v] = { { pair[1], pair[0], crease } };
+  }
   for (std::size_t e = 0; e < Edges.size(); ++e)
   {
     EdgeIndex.emplace(edgeKey(Edges[e][0], Edges[e][1]), static_cast<int>(e));
@@ -418,20 +418,33 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
     }
     Regions[region][TriangleSide[t] > 0 ? 1 : 0].push_back(static_cast<int>(t));
   }
-  for (const BindingPath& p : binding.paths)
+  // A path of side 0 is a border edge's rim path, or the crease path of a
+  // junction edge (which also has a + and a - path).
+  for (const bool sided : { true, false })
   {
-    const auto& e = binding.collisionEdges[p.collisionEdge];
-    EdgePaths& paths = Paths[edgeKey(e[0], e[1])];
-    if (p.side == 0)
+    for (const BindingPath& p : binding.paths)
     {
-      paths.rim = true;
-      paths.sides = { p.visualVertices, p.visualVertices };
-    }
-    else
-    {
-      paths.sides[p.side > 0 ? 1 : 0] = p.visualVertices;
+      if ((p.side != 0) != sided)
+        continue;
+      const auto& e = binding.collisionEdges[p.collisionEdge];
+      EdgePaths& paths = Paths[edgeKey(e[0], e[1])];
+      if (p.side != 0)
+        paths.sides[p.side > 0 ? 1 : 0] = p.visualVertices;
+      else if (!paths.sides[0].empty() || !paths.sides[1].empty())
+        paths.sides[CreaseSlot] = p.visualVertices;
+      else
+      {
+        paths.rim = true;
+        paths.sides[0] = paths.sides[1] = p.visualVertices;
+      }
     }
   }
+}
+
+bool CuttableVisualMesh::facesCleft(const CuttableCollisionMesh& collision, int T, int side)
+{
+  // halves() slots are + then -; a side index here is - then +.
+  return collision.halves()[T][side > 0 ? 0 : 1] == SurfaceHalf::Cleft;
 }
 
 void CuttableVisualMesh::setSettings(const VisualCutSettings& settings)
@@ -698,7 +711,9 @@ Vector3 CuttableVisualMesh::parametersIn(int v, int triangle, const Triangle& co
 std::vector<int> CuttableVisualMesh::path(int a, int b, int side) const
 {
   const auto it = Paths.find(edgeKey(a, b));
-  return it == Paths.end() ? std::vector<int>{} : it->second.sides[side > 0 ? 1 : 0];
+  if (it == Paths.end())
+    return {};
+  return it->second.sides[side > 0 ? 1 : (side < 0 || !it->second.junction() ? 0 : CreaseSlot)];
 }
 
 bool CuttableVisualMesh::isRimEdge(int a, int b) const
@@ -751,7 +766,8 @@ void CuttableVisualMesh::splitEdgePaths(CutContext& context)
                               ") has no visual path");
     }
     point.rim = found->second.rim;
-    for (int side = 0; side < 2; ++side)
+    point.junction = found->second.junction();
+    for (int side = 0; side < point.slotCount(); ++side)
     {
       const std::vector<int>& p = found->second.sides[side];
       const std::vector<double> at = pathParameters(p, point.a, point.b);
@@ -820,6 +836,7 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
       RegionCut region;
       region.split = static_cast<int>(s);
       region.side = side;
+      region.cleft = facesCleft(*context.collision, split.children.front(), side);
       region.triangles = Regions[split.parent][side];
       // Local vertices (CutContext::localIndex), the triangles in them; a
       // region has fewer vertices than triangles (plus its border).
@@ -885,8 +902,11 @@ SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
 {
   const int corner = cornerIndex(barycentric);
   if (corner < 0)
-    return context.edgePoints[context.edgePointOf.at(vertex)].visual[region.side];
-  const int paired = Paired[vertex][region.side];
+  {
+    const EdgePoint& point = context.edgePoints[context.edgePointOf.at(vertex)];
+    return point.visual[point.junction ? region.junctionSlot() : region.side];
+  }
+  const int paired = Paired[vertex][pairedSlot(vertex, region.side, region.cleft)];
   if (context.local(paired) >= 0)
     return SurfacePoint::atVertex(paired);
   // The paths from this corner share their first segment with another

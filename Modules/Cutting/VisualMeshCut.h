@@ -144,10 +144,12 @@ public:
   const std::vector<std::int8_t>& triangleSides() const { return TriangleSide; }
   const std::vector<VisualMaterial>& triangleMaterials() const { return TriangleMaterial; }
   /// Per collision vertex: its visual vertex on the - and + side (the same
-  /// vertex twice on the rim).
-  const std::vector<std::array<int, 2>>& pairedVisualVertices() const { return Paired; }
-  /// The visual path of collision edge (a, b) on `side` (+1 / -1), from the
-  /// lower collision vertex to the higher; empty if there is none.
+  /// vertex twice on the rim) and, at a horizontal cleavage's junction
+  /// vertex, on the cleft's crease (else -1).
+  const std::vector<std::array<int, 3>>& pairedVisualVertices() const { return Paired; }
+  /// The visual path of collision edge (a, b) on `side` (+1 / -1; 0: the
+  /// crease path of a junction edge), from the lower collision vertex to the
+  /// higher; empty if there is none.
   std::vector<int> path(int a, int b, int side) const;
   /// Whether the edge's two sides meet on the rim (one path for both).
   bool isRimEdge(int a, int b) const;
@@ -173,11 +175,15 @@ public:
   CutSurfaceRoughness cutSurfaceRoughness(const std::function<bool(int, int)>& counts) const;
 
 private:
+  /// Path slots: [0] side -1, [1] side +1, [2] a junction edge's crease.
+  static constexpr int CreaseSlot = 2;
   struct EdgePaths
   {
-    /// [0]: side -1, [1]: side +1, from the lower collision vertex.
-    std::array<std::vector<int>, 2> sides;
+    /// Per slot, from the lower collision vertex; the crease slot is empty
+    /// but on a horizontal cleavage's junction edge.
+    std::array<std::vector<int>, 3> sides;
     bool rim = false;
+    bool junction() const { return !sides[CreaseSlot].empty(); }
   };
   struct CutStrip
   {
@@ -185,6 +191,9 @@ private:
     /// the columns at the edge's ends.
     std::vector<std::vector<int>> rows;
     std::vector<int> triangles;
+    /// Per side (-, +): it faces a horizontal cleavage's cleft, so that at a
+    /// junction its path and column end are the crease's.
+    std::array<bool, 2> cleft{ { false, false } };
   };
   struct CutContext;
   /// Buffers the stages of a cut work in, kept from cut to cut (cleared,
@@ -266,6 +275,21 @@ private:
     const auto hi = static_cast<std::uint64_t>(std::max(a, b));
     return (lo << 32) | hi;
   }
+  /// The paired visual vertex slot side `side` (0: -, 1: +) of a triangle
+  /// sees at collision vertex v: the crease's at a junction vertex if that
+  /// side faces the cleft.
+  int pairedSlot(int v, int side, bool cleft) const
+  {
+    return cleft && Paired[v][CreaseSlot] >= 0 ? CreaseSlot : side;
+  }
+  /// The path slot of the same along an edge with paths `paths`.
+  static int pathSlot(const EdgePaths& paths, int side, bool cleft)
+  {
+    return cleft && paths.junction() ? CreaseSlot : side;
+  }
+  /// Whether side `side` (0: -, 1: +) of collision triangle T faces a
+  /// horizontal cleavage's cleft.
+  static bool facesCleft(const CuttableCollisionMesh& collision, int T, int side);
   void reserveRoom();
   int edgeIndex(int a, int b);
   int addVertexCopy(int source);
@@ -317,12 +341,71 @@ private:
     const Eigen::Matrix3d& inverse,
     CutContext& context);
   void finishEdgePoints(CutContext& context);
+  bool rootStillUses(const CuttableCollisionMesh& collision, int v) const;
   void openVisualMesh(const CuttableCollisionMesh& collision, CutContext& context);
+  /// A junction edge left with one triangle keeps the two paths it sees.
+  void dropUnseenJunctionPaths(const CuttableCollisionMesh& collision, CutContext& context);
   void updateEdgePaths(const CuttableCollisionMesh& collision, CutContext& context);
   void updateCutSurface(const CuttableCollisionMesh& collision, CutContext& context);
   void splitStrip(std::uint64_t key, int a, int b, int middle, double at, CutContext& context);
-  const std::vector<int>& endColumn(int collisionVertex, const Vector3& outward);
+  struct EndColumn;
+  /// Collision vertex v's column of cut-surface vertices (entries not made
+  /// yet are -1), and entry `index` of it, made if needed.
+  EndColumn& endColumn(const CuttableCollisionMesh& collision, int collisionVertex);
+  int columnVertex(int collisionVertex, int index, const Vector3& outward);
+  /// Whether collision edge (a, b) carries a strip (an opened edge, or a
+  /// fold: leaves left on a junction edge), its lip triangle (for a fold,
+  /// the upper leaf) and which of its sides (-, +) face the cleft.
+  bool stripSides(const CuttableCollisionMesh& collision,
+    int a,
+    int b,
+    int& lip,
+    std::array<bool, 2>& cleft) const;
+  /// Per entry of v's column: whether a strip at v (an edge of one triangle
+  /// there) spans it.
+  std::vector<bool> columnNeeds(const CuttableCollisionMesh& collision, int v) const;
+  /// Whether v's column runs through its crease vertex for a strip at v.
+  bool bodyColumnUsesCrease(const CuttableCollisionMesh& collision, int v) const;
+  void handOverColumns(const CuttableCollisionMesh& collision, CutContext& context);
+  void upgradeColumns(const CuttableCollisionMesh& collision,
+    std::vector<std::array<int, 2>>& edges,
+    CutContext& context);
+  /// Adds the edges of the strips at v to `edges` (to be rebuilt).
+  void addStripsAt(const CuttableCollisionMesh& collision,
+    int v,
+    std::vector<std::array<int, 2>>& edges) const;
+  /// The rows a strip needs: as many as its longer end column has entries.
+  int stripRowCount(const CuttableCollisionMesh& collision, int a, int b, const CutStrip& strip);
+  /// Gives a strip the rows its end columns have grown to.
+  void growStrip(const CuttableCollisionMesh& collision,
+    int a,
+    int b,
+    CutStrip& strip,
+    CutContext& context);
+  /// Where a smooth cut puts entry `index` of collision vertex v's end
+  /// column: between its + and - paired vertices (at a junction vertex,
+  /// + to crease, then crease to -).
+  Vector3 columnPlace(int v, int index) const;
+  /// The part of v's end column a strip with sides facing `cleft` joins:
+  /// from its + paired vertex to its - one, both included.
+  std::vector<int> stripColumn(const CuttableCollisionMesh& collision,
+    int v,
+    const std::array<bool, 2>& cleft,
+    const Vector3& outward);
+  /// The positions of that part in the column with its ends (0: the +
+  /// paired vertex; the - one after the inner entries).
+  std::array<int, 2> columnSpan(const CuttableCollisionMesh& collision,
+    int v,
+    const std::array<bool, 2>& cleft);
+  /// A strip's + and - paths on edge (a, b).
+  std::array<const std::vector<int>*, 2> stripPaths(int a, int b, const CutStrip& strip) const;
   std::vector<int> openPart(const std::vector<int>& path, int a, int b) const;
+  void makeStripRows(const CuttableCollisionMesh& collision,
+    int a,
+    int b,
+    int rowCount,
+    CutStrip& strip,
+    CutContext& context);
   void buildStrip(const CuttableCollisionMesh& collision, int a, int b, CutStrip& strip);
   /// The jagged cut surface's offset of a cut-surface vertex made at
   /// `restPosition` (JaggedCutSurface.cxx).
@@ -348,7 +431,8 @@ private:
   std::vector<int> TriangleRegion;
   std::vector<std::int8_t> TriangleSide;
   std::vector<VisualMaterial> TriangleMaterial;
-  std::vector<std::array<int, 2>> Paired;
+  /// Per collision vertex, per path slot (- / + / crease, -1 if none).
+  std::vector<std::array<int, 3>> Paired;
   /// Per collision triangle: its region's visual triangles on side -1, +1.
   std::vector<std::array<std::vector<int>, 2>> Regions;
   std::unordered_map<std::uint64_t, EdgePaths> Paths;
@@ -359,6 +443,9 @@ private:
   {
     std::vector<int> vertices;
     bool rim = false;
+    /// At a junction vertex whose leaves are cut: + to crease, the crease,
+    /// crease to - (a cut through the body alone passes the crease by).
+    bool throughCrease = false;
   };
   std::unordered_map<int, EndColumn> EndColumns;
   std::vector<int> FreeTriangles;

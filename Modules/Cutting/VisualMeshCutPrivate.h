@@ -22,11 +22,14 @@ struct CuttableVisualMesh::EdgePoint
   int b = -1;
   double u = 0.0;
   bool rim = false;
-  /// Per side (- then +): the point on the path, the path segment it is in,
-  /// and the visual vertex it became.
-  std::array<SurfacePoint, 2> visual;
-  std::array<int, 2> pathPosition{ { 0, 0 } };
-  std::array<int, 2> visualVertex{ { -1, -1 } };
+  /// On a junction edge: the point is a junction vertex, with a crease slot.
+  bool junction = false;
+  /// Per path slot (-, +, crease): the point on the path, the path segment
+  /// it is in, and the visual vertex it became.
+  std::array<SurfacePoint, 3> visual;
+  std::array<int, 3> pathPosition{ { 0, 0, 0 } };
+  std::array<int, 3> visualVertex{ { -1, -1, -1 } };
+  int slotCount() const { return junction ? 3 : 2; }
 };
 
 /// A new collision edge across a split triangle, traced on one side.
@@ -46,6 +49,12 @@ struct CuttableVisualMesh::RegionCut
 {
   int split = -1; ///< index into CollisionCutResult::splits
   int side = 0;   ///< 0: -, 1: +
+  /// The side faces a horizontal cleavage's cleft: at junction edges and
+  /// vertices its border is the crease's path and vertex.
+  bool cleft = false;
+  /// The path slot its border takes at a junction (the crease's, or its
+  /// side's), and elsewhere.
+  int junctionSlot() const { return cleft ? CuttableVisualMesh::CreaseSlot : side; }
   std::vector<int> triangles;
   /// Per triangle: its corners as local vertices, and whether a traced
   /// cut comes near it (only those can hold a point of a traced path).

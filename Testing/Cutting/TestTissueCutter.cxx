@@ -170,38 +170,19 @@ TEST(TissueCutter, BadBladesLeaveTheTissueUntouched)
   EXPECT_THROW(TissueCutter(noRadius, sheet.simulation), InvalidInputError);
 }
 
-// The horizontal cleavage binds (its junction edges of three triangles get
-// a path per wedge) and its collision mesh, hexahedra and FEM are cut, but
-// the visual cut's third side is not made yet: a cutter with the visual
-// mesh refuses it by name instead of cutting it wrong.
-TEST(TissueCutter, AHorizontalCleavagesVisualCutIsRefusedByName)
-{
-  MeniscusParameters parameters;
-  parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
-  const MeniscusModel cleaved = makeMeniscus(parameters);
-  const VisualCollisionBinding binding = bindVisualToCollision(cleaved.visual, cleaved.collision);
-  try
-  {
-    TissueCutter cutter(binding, cleaved.simulation);
-    ADD_FAILURE() << "a visual cutter was made for a collision mesh with a junction";
-  }
-  catch (const InvalidInputError& e)
-  {
-    EXPECT_NE(std::string(e.what()).find("horizontal cleavage's junction"), std::string::npos)
-      << e.what();
-  }
-  EXPECT_NO_THROW(TissueCutter(cleaved.collision, cleaved.simulation));
-}
-
 // A blade across the cleaved meniscus, through the middle of its junction
-// and square to it, cuts the body and both leaves: the C comes apart in two.
+// and square to it, cuts the body and both leaves: the C comes apart in two,
+// and its visual mesh with it (5.3.2 - 5.3.4 through a junction: the new
+// junction points get a crease vertex each, and the body's cut surface runs
+// + -> crease -> - where the leaves' two meet it).
 TEST(TissueCutter, AHorizontalCleavageIsCutThroughTheBodyAndBothLeaves)
 {
   MeniscusParameters parameters;
   parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
   const MeniscusModel cleaved = makeMeniscus(parameters);
+  const VisualCollisionBinding binding = bindVisualToCollision(cleaved.visual, cleaved.collision);
   CorotationalHexFem fem(cleaved.simulation, test::softTissue(), sweepStepSettings());
-  TissueCutter cutter(cleaved.collision, cleaved.simulation, &fem);
+  TissueCutter cutter(binding, cleaved.simulation, &fem);
   // The junction's middle edge: where the leaves part from the body.
   const TriangleMeshAdjacency uncut(cleaved.collision);
   std::vector<int> junction;
@@ -219,15 +200,36 @@ TEST(TissueCutter, AHorizontalCleavageIsCutThroughTheBodyAndBothLeaves)
   const Vector3 from = at - reach * across, to = at + reach * across;
   const auto report = cutter.cut(Blade::sweptSegment(from - up, from + up, to - up, to + up));
   ASSERT_TRUE(cutterIsConsistent(cutter, cleaved.simulation));
-  int junctionsCut = 0;
+  std::vector<int> junctionPoints;
   for (const NewCollisionVertex& made : report.collision.newVertices)
     if (made.duplicateOf < 0 &&
         uncut.edgeTriangleCount(uncut.findEdge(made.edge[0], made.edge[1])) == 3)
-      ++junctionsCut;
-  EXPECT_EQ(junctionsCut, 1) << "the blade crossed the junction once";
+      junctionPoints.push_back(made.vertex);
+  ASSERT_EQ(junctionPoints.size(), 1u) << "the blade crossed the junction once";
   int pieces = 0;
   collisionPieces(cutter.collision(), pieces);
   EXPECT_EQ(pieces, 2);
+  // The junction point and its copy: each a crease vertex of its own, on
+  // the cleft's walls between the top and the bottom ones.
+  const CuttableVisualMesh& visual = cutter.visual();
+  std::vector<int> creases;
+  for (const NewCollisionVertex& made : report.collision.newVertices)
+    if (made.vertex == junctionPoints[0] || made.duplicateOf == junctionPoints[0])
+    {
+      const auto& paired = visual.pairedVisualVertices()[made.vertex];
+      ASSERT_GE(paired[2], 0) << "junction point " << made.vertex << " has no crease vertex";
+      EXPECT_NE(paired[2], paired[0]);
+      EXPECT_NE(paired[2], paired[1]);
+      const auto& p = visual.mesh().positions;
+      const Vector3 upward = p[paired[1]] - p[paired[0]];
+      const double height = (p[paired[2]] - p[paired[0]]).dot(upward) / upward.squaredNorm();
+      EXPECT_GT(height, 0.0) << "the crease lies between the bottom and the top";
+      EXPECT_LT(height, 1.0) << "the crease lies between the bottom and the top";
+      creases.push_back(paired[2]);
+    }
+  ASSERT_EQ(creases.size(), 2u);
+  EXPECT_NE(creases[0], creases[1]);
+  EXPECT_GT(visual.cutSurfaceTriangleCount(), 0u);
   ASSERT_TRUE(fem.step().ok);
 }
 
@@ -316,6 +318,11 @@ TEST(TissueCutterProperty, RandomSweepsCutTheRadiallyTornMeniscusVisualMeshConsi
 TEST(TissueCutterProperty, RandomSweepsCutTheFlapTornMeniscusVisualMeshConsistently)
 {
   sweepTornMeniscusVisually(MeniscusTearType::Flap, 5513u);
+}
+
+TEST(TissueCutterProperty, RandomSweepsCutTheCleavedMeniscusVisualMeshConsistently)
+{
+  sweepTornMeniscusVisually(MeniscusTearType::HorizontalCleavage, 5514u);
 }
 
 namespace

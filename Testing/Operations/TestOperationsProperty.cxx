@@ -12,9 +12,10 @@
 //    visual triangles and volume within the jaggedness unchanged) and does
 //    not roughen the rim; over an episode it smooths it.
 // 500 operations per tissue, 2,000 in all; THINTISSUE_CUT_SOAK=N runs N
-// times as many. (The horizontally cleaved meniscus is not here: its
-// collision mid-surface forks where the leaves meet, an edge with three
-// triangles, which the cutter refuses.)
+// times as many. (The horizontally cleaved meniscus is not here yet: a bite
+// through the body and one leaf beside a junction vertex, the other leaf
+// whole, leaves four cut walls on that vertex's one column - see
+// Architecture.md, "Cutting the visual mesh of a cleavage".)
 #include "CorotationalHexFem.h"
 #include "CuttingInvariants.h"
 #include "OperationTestHelpers.h"
