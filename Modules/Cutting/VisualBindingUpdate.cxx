@@ -152,12 +152,26 @@ int findSet(std::vector<int>& parent, int x)
   return x;
 }
 
+// Sets hang on their lowest member (parent[x] <= x always), so that one
+// pass in increasing order flattens them (flattenSets).
 void joinSets(std::vector<int>& parent, int x, int y)
 {
+  // Most joins inside a region are of vertices hanging on one root already
+  // (each inner edge is met from both its triangles): no walk then.
+  if (parent[x] == parent[y])
+    return;
   x = findSet(parent, x);
   y = findSet(parent, y);
   if (x != y)
     parent[std::max(x, y)] = std::min(x, y);
+}
+
+/// Every element's parent becomes its root: parent[x] < x was flattened
+/// before x.
+void flattenSets(std::vector<int>& parent)
+{
+  for (std::size_t x = 0; x < parent.size(); ++x)
+    parent[x] = parent[parent[x]];
 }
 
 } // namespace
@@ -213,6 +227,7 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
     // A triangle is in the set of its first inner corner (joined with the
     // others), else in its own.
     int self = -1;
+    int specialCorners = 0;
     for (int v : tri)
       if (!special[v])
       {
@@ -221,9 +236,15 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
         else
           joinSets(parent, self, v);
       }
+      else
+        ++specialCorners;
     if (self < 0)
       self = static_cast<int>(count + i);
     representative[i] = self;
+    // An edge between special corners needs two of them (most triangles
+    // of a region have none).
+    if (specialCorners < 2)
+      continue;
     for (int k = 0; k < 3; ++k)
     {
       const int a = tri[k], b = tri[(k + 1) % 3];
@@ -238,6 +259,7 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
   for (std::size_t e = 0; e + 1 < borderEdges.size(); ++e)
     if (borderEdges[e].first == borderEdges[e + 1].first)
       joinSets(parent, borderEdges[e].second, borderEdges[e + 1].second);
+  flattenSets(parent);
   rebindPieces(region, onCut, context);
 }
 
@@ -262,7 +284,7 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
   triangleIn.resize(triangleCount);
   for (std::size_t i = 0; i < triangleCount; ++i)
   {
-    int& piece = pieceOf[findSet(buffers.parent, buffers.representative[i])];
+    int& piece = pieceOf[buffers.parent[buffers.representative[i]]]; // flattened
     if (piece < 0)
     {
       piece = static_cast<int>(centroids.size());
