@@ -380,9 +380,10 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
     // triangle whose centre is nearest (most are inside it: one inversion,
     // no search structure), the others searched among all those copies.
     std::vector<int> candidates;
+    std::vector<Vector3> centres; // per candidate
     std::vector<int> firstTry;
     firstTry.reserve(rest.size() - firstNew);
-    HexahedronSeen.resize(Simulation.hexahedronCount(), 0);
+    CandidateSlot.resize(Simulation.hexahedronCount(), 0);
     for (int v = firstNew; v < static_cast<int>(rest.size()); ++v)
     {
       const int t = Visual.collisionTriangleOf(v, Collision);
@@ -391,16 +392,19 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
       static const std::vector<int> none;
       for (const int h : t >= 0 ? Branches.hexahedraOf(t) : none)
       {
-        // Each candidate once (marked: the new vertices share a few).
-        if (!HexahedronSeen[h])
+        // Each candidate once, its centre too (the new vertices of a
+        // triangle share its hexahedra: 8 node sums per vertex had cost
+        // more than the embedding's first tries).
+        if (!CandidateSlot[h])
         {
-          HexahedronSeen[h] = 1;
           candidates.push_back(h);
+          CandidateSlot[h] = static_cast<int>(candidates.size());
+          Vector3 centre = Vector3::Zero();
+          for (const int node : Simulation.hexahedra[h])
+            centre += Simulation.nodes[node];
+          centres.push_back(centre / 8.0);
         }
-        Vector3 centre = Vector3::Zero();
-        for (const int node : Simulation.hexahedra[h])
-          centre += Simulation.nodes[node];
-        const double distance = (centre / 8.0 - rest[v]).squaredNorm();
+        const double distance = (centres[CandidateSlot[h] - 1] - rest[v]).squaredNorm();
         if (distance < nearestDistance)
         {
           nearest = h;
@@ -410,7 +414,7 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
       firstTry.push_back(nearest);
     }
     for (int h : candidates)
-      HexahedronSeen[h] = 0;
+      CandidateSlot[h] = 0;
     std::sort(candidates.begin(), candidates.end());
     VisualEmbedding.appendPoints(
       std::vector<Vector3>(rest.begin() + firstNew, rest.end()), firstTry, Simulation, candidates);

@@ -219,9 +219,10 @@ private:
   /// Per visual vertex, 0 between cuts: marks while a cut re-embeds.
   std::vector<char> VisualSeen;
   std::vector<char> CollisionSeen; ///< per collision vertex, all 0 between cuts
-  /// Per hexahedron (copies too), all 0 between cuts: the candidates of
-  /// the new visual vertices, each once.
-  std::vector<char> HexahedronSeen;
+  /// Per hexahedron (copies too), all 0 between cuts: 1 + its place among
+  /// the candidates of the new visual vertices (each once, its rest centre
+  /// computed once), else 0.
+  std::vector<int> CandidateSlot;
   /// Visual vertices a cut may move to another piece without copying
   /// their hexahedron, revisited by the cuts that may have done so:
   /// - those embedded in a hexahedron that holds a triangle around their

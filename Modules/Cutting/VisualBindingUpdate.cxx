@@ -797,7 +797,9 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   compactTriangles();
   auto sorted = [](std::vector<int> list)
   {
-    std::sort(list.begin(), list.end());
+    // New vertices are made in increasing order: most lists need no sort.
+    if (!std::is_sorted(list.begin(), list.end()))
+      std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
     return list;
   };

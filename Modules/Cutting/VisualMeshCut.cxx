@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <unordered_set>
@@ -220,17 +221,26 @@ double cross2(const Vector2& a, const Vector2& b)
 std::vector<int> foldedTriangles(const std::vector<Vector2>& planar,
   const std::vector<Triangle>& triangles)
 {
-  std::vector<double> areas;
-  areas.reserve(triangles.size());
+  auto area = [&](const Triangle& t)
+  { return cross2(planar[t[1]] - planar[t[0]], planar[t[2]] - planar[t[0]]); };
   double total = 0.0;
+  double smallest = std::numeric_limits<double>::infinity();
+  double largest = -smallest;
   for (const Triangle& t : triangles)
   {
-    areas.push_back(cross2(planar[t[1]] - planar[t[0]], planar[t[2]] - planar[t[0]]));
-    total += areas.back();
+    const double a = area(t);
+    total += a;
+    smallest = std::min(smallest, a);
+    largest = std::max(largest, a);
   }
   std::vector<int> folded;
-  for (std::size_t t = 0; t < areas.size(); ++t)
-    if (areas[t] * total <= 0.0)
+  // Rounded products keep the order of their factors: if neither extreme
+  // has a product <= 0 with the total, no area has (the usual case, one
+  // pass).
+  if (smallest * total > 0.0 && largest * total > 0.0)
+    return folded;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (area(triangles[t]) * total <= 0.0)
       folded.push_back(static_cast<int>(t));
   return folded;
 }
