@@ -21,6 +21,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -328,6 +329,35 @@ struct ShadowRaster
   std::size_t at(int i, int j) const { return static_cast<std::size_t>(j) * width + i; }
 };
 
+/// Marks the cells of `r` (its frame set) whose centre a projected
+/// triangle covers; cells beyond the frame are left out.
+void coverTriangles(const TriangleMesh& mesh, const ProjectedSurface& surface, ShadowRaster& r)
+{
+  r.inside.assign(static_cast<std::size_t>(r.width) * r.height, 0);
+  for (const Triangle& t : mesh.triangles)
+  {
+    const Vector2 a = (surface.project(mesh.positions[t[0]]) - r.origin) / r.cell;
+    const Vector2 b = (surface.project(mesh.positions[t[1]]) - r.origin) / r.cell;
+    const Vector2 c = (surface.project(mesh.positions[t[2]]) - r.origin) / r.cell;
+    const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    const Vector2 low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
+    if (std::abs(area) < 1e-12 || high.x() < 0.0 || high.y() < 0.0 || low.x() > r.width ||
+        low.y() > r.height)
+      continue;
+    const int jEnd = std::min(static_cast<int>(high.y()), r.height - 1);
+    const int iEnd = std::min(static_cast<int>(high.x()), r.width - 1);
+    for (int j = std::max(0, static_cast<int>(std::floor(low.y()))); j <= jEnd; ++j)
+      for (int i = std::max(0, static_cast<int>(std::floor(low.x()))); i <= iEnd; ++i)
+      {
+        const Vector2 q(i + 0.5, j + 0.5);
+        const double u = ((b - q).x() * (c - q).y() - (b - q).y() * (c - q).x()) / area;
+        const double v = ((c - q).x() * (a - q).y() - (c - q).y() * (a - q).x()) / area;
+        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
+          r.inside[r.at(i, j)] = 1;
+      }
+  }
+}
+
 ShadowRaster rasterizeShadow(const TriangleMesh& mesh,
   const ProjectedSurface& surface,
   double cellsAcross = 256.0)
@@ -337,26 +367,7 @@ ShadowRaster rasterizeShadow(const TriangleMesh& mesh,
   r.origin = surface.low() - Vector2(3.0 * r.cell, 3.0 * r.cell);
   r.width = static_cast<int>(std::ceil(surface.extent().x() / r.cell)) + 7;
   r.height = static_cast<int>(std::ceil(surface.extent().y() / r.cell)) + 7;
-  r.inside.assign(static_cast<std::size_t>(r.width) * r.height, 0);
-  for (const Triangle& t : mesh.triangles)
-  {
-    const Vector2 a = (surface.project(mesh.positions[t[0]]) - r.origin) / r.cell;
-    const Vector2 b = (surface.project(mesh.positions[t[1]]) - r.origin) / r.cell;
-    const Vector2 c = (surface.project(mesh.positions[t[2]]) - r.origin) / r.cell;
-    const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-    if (std::abs(area) < 1e-12)
-      continue;
-    const Vector2 low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
-    for (int j = static_cast<int>(std::floor(low.y())); j <= static_cast<int>(high.y()); ++j)
-      for (int i = static_cast<int>(std::floor(low.x())); i <= static_cast<int>(high.x()); ++i)
-      {
-        const Vector2 q(i + 0.5, j + 0.5);
-        const double u = ((b - q).x() * (c - q).y() - (b - q).y() * (c - q).x()) / area;
-        const double v = ((c - q).x() * (a - q).y() - (c - q).y() * (a - q).x()) / area;
-        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
-          r.inside[r.at(i, j)] = 1;
-      }
-  }
+  coverTriangles(mesh, surface, r);
   return r;
 }
 
@@ -465,13 +476,115 @@ std::vector<Loop> traceCellBorders(const ShadowRaster& r, const std::vector<char
   return loops;
 }
 
+/// Holes of the raster within this many cells of each other are looked at
+/// finer (ChannelRefinement times) for a see-through channel between them.
+constexpr int ChannelReach = 4;
+constexpr int ChannelRefinement = 8;
+
+/// Opens the cells of `r` along a see-through channel from hole a to hole
+/// b (pieces of `piece`) near cells ca and cb, if the finer raster of the
+/// cells around them has one; whether it had.
+bool openChannel(const TriangleMesh& mesh,
+  const ProjectedSurface& surface,
+  ShadowRaster& r,
+  const std::vector<int>& piece,
+  std::array<int, 4> pair)
+{
+  const auto [a, b, ca, cb] = pair;
+  const int i0 = std::max(1, std::min(ca % r.width, cb % r.width) - ChannelReach);
+  const int i1 = std::min(r.width - 2, std::max(ca % r.width, cb % r.width) + ChannelReach);
+  const int j0 = std::max(1, std::min(ca / r.width, cb / r.width) - ChannelReach);
+  const int j1 = std::min(r.height - 2, std::max(ca / r.width, cb / r.width) + ChannelReach);
+  ShadowRaster fine;
+  fine.cell = r.cell / ChannelRefinement;
+  fine.origin = r.origin + r.cell * Vector2(i0, j0);
+  fine.width = (i1 - i0 + 1) * ChannelRefinement;
+  fine.height = (j1 - j0 + 1) * ChannelRefinement;
+  coverTriangles(mesh, surface, fine);
+  auto coarse = [&](int f) {
+    return r.at(i0 + f % fine.width / ChannelRefinement, j0 + f / fine.width / ChannelRefinement);
+  };
+  // Breadth first over the fine empty cells, from those in hole a.
+  std::vector<int> from(fine.inside.size(), -2);
+  std::vector<int> queue;
+  for (int f = 0; f < static_cast<int>(fine.inside.size()); ++f)
+    if (!fine.inside[f] && piece[coarse(f)] == a)
+    {
+      from[f] = -1;
+      queue.push_back(f);
+    }
+  for (std::size_t k = 0; k < queue.size(); ++k)
+  {
+    const int f = queue[k];
+    if (piece[coarse(f)] == b)
+    {
+      for (int g = f; g >= 0; g = from[g])
+        r.inside[coarse(g)] = 0;
+      return true;
+    }
+    const int i = f % fine.width;
+    const int j = f / fine.width;
+    const int next[4][2] = { { i + 1, j }, { i - 1, j }, { i, j + 1 }, { i, j - 1 } };
+    for (const auto& [x, y] : next)
+      if (x >= 0 && y >= 0 && x < fine.width && y < fine.height && !fine.inside[fine.at(x, y)] &&
+          from[fine.at(x, y)] == -2)
+      {
+        from[fine.at(x, y)] = f;
+        queue.push_back(static_cast<int>(fine.at(x, y)));
+      }
+  }
+  return false;
+}
+
+/// A tear's slit narrower than a cell somewhere along it leaves the raster
+/// several holes where the surface has one opening, and the collision mesh
+/// spanned the lips between them (issue 14: fine longitudinal tear, seed
+/// 1004, two holes 0.26 mm apart joined by a channel 0.05 mm wide). Holes
+/// within ChannelReach cells are joined where a finer raster of the cells
+/// between sees through along a channel: the cells along it are opened.
+void openChannelsBetweenHoles(const TriangleMesh& mesh,
+  const ProjectedSurface& surface,
+  ShadowRaster& r)
+{
+  std::vector<int> counts;
+  const std::vector<int> piece = emptyPieces(r, counts);
+  // The closest cells of each pair of holes (a < b) within reach.
+  std::map<std::pair<int, int>, std::pair<int, std::array<int, 2>>> closest;
+  for (int j = 1; j + 1 < r.height; ++j)
+    for (int i = 1; i + 1 < r.width; ++i)
+    {
+      const int a = piece[r.at(i, j)];
+      if (a <= 0)
+        continue;
+      for (int y = std::max(0, j - ChannelReach); y <= std::min(r.height - 1, j + ChannelReach);
+           ++y)
+        for (int x = std::max(0, i - ChannelReach); x <= std::min(r.width - 1, i + ChannelReach);
+             ++x)
+        {
+          const int b = piece[r.at(x, y)];
+          const int distance = (x - i) * (x - i) + (y - j) * (y - j);
+          auto found = closest.find({ a, b });
+          if (b > a && (found == closest.end() || distance < found->second.first))
+            closest[{ a, b }] = { distance,
+              { { static_cast<int>(r.at(i, j)), static_cast<int>(r.at(x, y)) } } };
+        }
+    }
+  for (const auto& [holes, nearest] : closest)
+    openChannel(mesh,
+      surface,
+      r,
+      piece,
+      { { holes.first, holes.second, nearest.second[0], nearest.second[1] } });
+}
+
 /// The loops of the surface's shadow along the axis, from its raster: for
 /// a rough surface (a segmentation's staircase), whose silhouette edges
 /// wander over the step walls and may cross themselves. Holes of fewer
 /// than 16 cells are filled (gaps between the steps, not tears).
 std::vector<Loop> shadowLoops(const TriangleMesh& mesh, const ProjectedSurface& surface)
 {
-  const ShadowRaster raster = rasterizeShadow(mesh, surface);
+  ShadowRaster raster = rasterizeShadow(mesh, surface);
+  openChannelsBetweenHoles(mesh, surface, raster);
   std::vector<int> cellCounts;
   const std::vector<int> piece = emptyPieces(raster, cellCounts);
   // The outside closed by one cell (pinholes between projected triangles,

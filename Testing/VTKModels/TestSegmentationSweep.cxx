@@ -23,6 +23,7 @@
 #include "ThinSheetModel.h"
 #include "TissueBundle.h"
 #include "ToolContacts.h"
+#include "TriangleMeshAdjacency.h"
 #include "vtkThinTissueConversion.h"
 
 #include <vtkNew.h>
@@ -408,4 +409,27 @@ TEST(SegmentationSweep, NoCollisionVertexStandsOnASliverOfTissue)
   const auto thinnest = std::min_element(radii.begin(), radii.end());
   EXPECT_GE(*thinnest, 0.0249 * generated.largestThickness)
     << "collision vertex " << thinnest - radii.begin();
+}
+// The longitudinal tear's slit (seed 1004) narrows to 0.05 mm at one place,
+// less than a cell of the shadow's raster (0.16 mm): the outline had two
+// holes where the surface has one slit, the collision mesh spanned the
+// lips between them, and side paths went round the slit's end and crossed
+// ("paths 67 and 231 cross ... path 231 runs 37.2 between ends 3.32
+// apart"). Holes a few cells apart are now joined where a finer raster
+// sees through between them: the collision mesh has one hole (two border
+// loops: Euler characteristic 0), and the tear prepares, binds and takes
+// a press.
+TEST(SegmentationSweep, ASlitNarrowerThanAShadowCellIsOneHole)
+{
+  const TriangleMesh visual =
+    closeSmallTunnels(segmented(tissueModel("LongitudinalTear"), sweepCase(1004)));
+  CollisionMeshSettings settings;
+  settings.vertexCount = 105;
+  const TriangleMesh collision = makeCollisionMidSurface(visual, settings).mesh;
+  const TriangleMeshAdjacency adjacency(collision);
+  const int eulerCharacteristic = static_cast<int>(collision.vertexCount()) -
+                                  static_cast<int>(adjacency.edgeCount()) +
+                                  static_cast<int>(collision.triangleCount());
+  EXPECT_EQ(2 - eulerCharacteristic, 2) << "border loops of the collision mesh";
+  EXPECT_EQ(prepareAndCheck(segmented(tissueModel("LongitudinalTear"), sweepCase(1004)), true), "");
 }
