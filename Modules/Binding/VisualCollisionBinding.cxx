@@ -456,6 +456,50 @@ void addEdgePointCandidates(const TriangleMesh& visual,
   }
 }
 
+/// The `count` visual vertices nearest to `target` as (distance, vertex),
+/// nearest first (ties by index; all of them on a smaller surface). Local:
+/// the vertices of the triangles the tree finds in a cube about the target,
+/// the cube doubled until `count` of them lie within its half width (any
+/// vertex nearer lies in such a triangle), instead of every vertex.
+std::vector<std::pair<double, int>> nearestVisualVertices(const TriangleMesh& visual,
+  const TriangleBvh& visualBvh,
+  const Vector3& target,
+  std::size_t count)
+{
+  count = std::min(count, visual.vertexCount());
+  const double diagonal = visualBvh.bounds().diagonal().norm();
+  double half =
+    diagonal / std::sqrt(static_cast<double>(std::max<std::size_t>(1, visual.vertexCount())));
+  std::vector<int> found;
+  std::vector<std::pair<double, int>> nearest;
+  while (true)
+  {
+    found.clear();
+    const Vector3 corner(half, half, half);
+    visualBvh.forEachOverlap(BoundingBox(target - corner, target + corner),
+      [&](int t)
+      {
+        for (int w : visual.triangles[t])
+          found.push_back(w);
+      });
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    nearest.clear();
+    std::size_t within = 0;
+    for (int w : found)
+    {
+      nearest.emplace_back((visual.positions[w] - target).norm(), w);
+      within += nearest.back().first <= half ? 1 : 0;
+    }
+    if (within >= count || half > diagonal + visualBvh.bounds().exteriorDistance(target))
+      break;
+    half *= 2.0;
+  }
+  std::partial_sort(nearest.begin(), nearest.begin() + count, nearest.end());
+  nearest.resize(count);
+  return nearest;
+}
+
 /// The claim of border collision vertex v on the visual rim (5.2.1): its
 /// candidates, closest first. Returns why it has none within reach, or an
 /// empty text. `reach`: `thinnessFactor` radii, or up to twice that within
@@ -505,14 +549,8 @@ std::string claimRimPoint(const TriangleMesh& visual,
       target = origin + distance * direction;
     }
   }
-  std::vector<std::pair<double, int>> nearest;
-  for (std::size_t w = 0; w < visual.vertexCount(); ++w)
-  {
-    nearest.emplace_back((visual.positions[w] - target).norm(), static_cast<int>(w));
-  }
-  const std::size_t keep = std::min<std::size_t>(16, nearest.size());
-  std::partial_sort(nearest.begin(), nearest.begin() + keep, nearest.end());
-  nearest.resize(keep);
+  const std::vector<std::pair<double, int>> nearest =
+    nearestVisualVertices(visual, visualBvh, target, 16);
   for (const auto& [distance, w] : nearest)
   {
     claim.candidates.emplace_back(distance, SurfacePoint::atVertex(w));
