@@ -476,6 +476,10 @@ std::vector<Loop> traceCellBorders(const ShadowRaster& r, const std::vector<char
   return loops;
 }
 
+/// Holes of the raster of fewer cells are filled (gaps between the steps of
+/// a staircase, not tears).
+constexpr int SmallestHole = 16;
+
 /// Holes of the raster within this many cells of each other are looked at
 /// finer (ChannelRefinement times) for a see-through channel between them.
 constexpr int ChannelReach = 4;
@@ -540,21 +544,32 @@ bool openChannel(const TriangleMesh& mesh,
 /// several holes where the surface has one opening, and the collision mesh
 /// spanned the lips between them (issue 14: fine longitudinal tear, seed
 /// 1004, two holes 0.26 mm apart joined by a channel 0.05 mm wide). Holes
-/// within ChannelReach cells are joined where a finer raster of the cells
-/// between sees through along a channel: the cells along it are opened.
+/// (of SmallestHole cells at least) within ChannelReach cells are joined where a finer raster of
+/// the cells between sees through along a channel: the cells along it are opened.
 void openChannelsBetweenHoles(const TriangleMesh& mesh,
   const ProjectedSurface& surface,
   ShadowRaster& r)
 {
   std::vector<int> counts;
   const std::vector<int> piece = emptyPieces(r, counts);
-  // The closest cells of each pair of holes (a < b) within reach.
+  // Holes that outlineAndHoles keeps: SmallestHole cells at least, and a
+  // 50th of the outline's length (cell sides along tissue, both).
+  std::vector<int> sides(counts.size(), 0);
+  for (int j = 1; j + 1 < r.height; ++j)
+    for (int i = 1; i + 1 < r.width; ++i)
+      if (r.inside[r.at(i, j)])
+        for (const std::size_t c :
+          { r.at(i + 1, j), r.at(i - 1, j), r.at(i, j + 1), r.at(i, j - 1) })
+          sides[piece[c]] += piece[c] >= 0 ? 1 : 0;
+  auto kept = [&](int hole)
+  { return counts[hole] >= SmallestHole && 50 * sides[hole] >= sides.front(); };
+  // The closest cells of each pair of kept holes (a < b) within reach.
   std::map<std::pair<int, int>, std::pair<int, std::array<int, 2>>> closest;
   for (int j = 1; j + 1 < r.height; ++j)
     for (int i = 1; i + 1 < r.width; ++i)
     {
       const int a = piece[r.at(i, j)];
-      if (a <= 0)
+      if (a <= 0 || !kept(a))
         continue;
       for (int y = std::max(0, j - ChannelReach); y <= std::min(r.height - 1, j + ChannelReach);
            ++y)
@@ -564,7 +579,8 @@ void openChannelsBetweenHoles(const TriangleMesh& mesh,
           const int b = piece[r.at(x, y)];
           const int distance = (x - i) * (x - i) + (y - j) * (y - j);
           auto found = closest.find({ a, b });
-          if (b > a && (found == closest.end() || distance < found->second.first))
+          if (b > a && kept(a) && kept(b) &&
+              (found == closest.end() || distance < found->second.first))
             closest[{ a, b }] = { distance,
               { { static_cast<int>(r.at(i, j)), static_cast<int>(r.at(x, y)) } } };
         }
@@ -594,7 +610,6 @@ std::vector<Loop> shadowLoops(const TriangleMesh& mesh, const ProjectedSurface& 
   closed.inside = closeByOneCell(raster);
   std::vector<int> closedCounts;
   const std::vector<int> closedPiece = emptyPieces(closed, closedCounts);
-  constexpr int SmallestHole = 16;
   std::vector<char> empty(piece.size(), 0);
   for (std::size_t c = 0; c < piece.size(); ++c)
     empty[c] = closedPiece[c] == 0 || (piece[c] > 0 && cellCounts[piece[c]] >= SmallestHole);
