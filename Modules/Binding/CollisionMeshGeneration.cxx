@@ -544,8 +544,11 @@ bool openChannel(const TriangleMesh& mesh,
 /// several holes where the surface has one opening, and the collision mesh
 /// spanned the lips between them (issue 14: fine longitudinal tear, seed
 /// 1004, two holes 0.26 mm apart joined by a channel 0.05 mm wide). Holes
-/// (of SmallestHole cells at least) within ChannelReach cells are joined where a finer raster of
-/// the cells between sees through along a channel: the cells along it are opened.
+/// the outline keeps within ChannelReach cells of each other are joined
+/// where a finer raster of the cells between sees through along a
+/// channel: the cells along it are opened. (Joining every hole piece, the
+/// small ones at a slit's narrow ends too, reshuffled which sweep cases
+/// bind.)
 void openChannelsBetweenHoles(const TriangleMesh& mesh,
   const ProjectedSurface& surface,
   ShadowRaster& r)
@@ -560,7 +563,8 @@ void openChannelsBetweenHoles(const TriangleMesh& mesh,
       if (r.inside[r.at(i, j)])
         for (const std::size_t c :
           { r.at(i + 1, j), r.at(i - 1, j), r.at(i, j + 1), r.at(i, j - 1) })
-          sides[piece[c]] += piece[c] >= 0 ? 1 : 0;
+          if (piece[c] >= 0)
+            ++sides[piece[c]];
   auto kept = [&](int hole)
   { return counts[hole] >= SmallestHole && 50 * sides[hole] >= sides.front(); };
   // The closest cells of each pair of kept holes (a < b) within reach.
@@ -579,8 +583,7 @@ void openChannelsBetweenHoles(const TriangleMesh& mesh,
           const int b = piece[r.at(x, y)];
           const int distance = (x - i) * (x - i) + (y - j) * (y - j);
           auto found = closest.find({ a, b });
-          if (b > a && kept(a) && kept(b) &&
-              (found == closest.end() || distance < found->second.first))
+          if (b > a && kept(b) && (found == closest.end() || distance < found->second.first))
             closest[{ a, b }] = { distance,
               { { static_cast<int>(r.at(i, j)), static_cast<int>(r.at(x, y)) } } };
         }
