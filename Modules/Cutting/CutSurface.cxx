@@ -139,31 +139,26 @@ void CuttableVisualMesh::splitStrip(std::uint64_t key,
   Strips[edgeKey(b, middle)] = std::move(second);
 }
 
-namespace
+bool CuttableVisualMesh::creaseOnTheCut(const CuttableCollisionMesh& collision, int v) const
 {
-
-/// Whether a leaf at junction vertex v is cut there (has an edge of one
-/// triangle at v): the cleft's crease then lies on the cut surface. A cut
-/// through the body alone leaves the crease inside the cleft's walls.
-bool creaseOnTheCut(const CuttableCollisionMesh& collision, int v)
-{
-  const auto& halves = collision.halves();
+  // A strip at v reaches the crease (a leaf cut there): the crease then
+  // lies on the cut surface. A cut through the body alone leaves it inside
+  // the cleft's walls.
   for (int T : collision.trianglesOfVertex(v))
   {
-    if (halves[T][0] != SurfaceHalf::Cleft && halves[T][1] != SurfaceHalf::Cleft)
-      continue;
     const Triangle& corners = collision.triangles()[T];
     for (int k = 0; k < 3; ++k)
     {
       const int x = corners[k], y = corners[(k + 1) % 3];
-      if ((x == v || y == v) && collision.trianglesOfEdge(x, y)[1] < 0)
+      StripLip lip;
+      if ((x == v || y == v) && stripSides(collision, x, y, lip) &&
+          (pairedSlot(v, 0, lip.cleft[0]) == CreaseSlot ||
+            pairedSlot(v, 1, lip.cleft[1]) == CreaseSlot))
         return true;
     }
   }
   return false;
 }
-
-} // namespace
 
 CuttableVisualMesh::EndColumn& CuttableVisualMesh::endColumn(const CuttableCollisionMesh& collision,
   int collisionVertex)
@@ -212,8 +207,7 @@ int CuttableVisualMesh::columnVertex(int collisionVertex, int index, const Vecto
 bool CuttableVisualMesh::stripSides(const CuttableCollisionMesh& collision,
   int a,
   int b,
-  int& lip,
-  std::array<bool, 2>& cleft) const
+  StripLip& lip) const
 {
   const auto paths = Paths.find(edgeKey(a, b));
   if (paths == Paths.end() || paths->second.rim)
@@ -221,27 +215,33 @@ bool CuttableVisualMesh::stripSides(const CuttableCollisionMesh& collision,
   const auto lips = collision.trianglesOfEdge(a, b);
   if (lips[0] >= 0 && lips[1] < 0)
   {
-    lip = lips[0];
-    cleft = { { facesCleft(collision, lip, 0), facesCleft(collision, lip, 1) } };
+    lip = {
+      lips[0], 1, { { facesCleft(collision, lips[0], 0), facesCleft(collision, lips[0], 1) } }
+    };
     return true;
   }
-  // A fold: the two leaves left on a junction edge their body was cut off
-  // along. Their strip joins the top to the bottom in front of the crease
-  // (which stays between the cleft's walls); its lip is the upper leaf.
   if (!paths->second.junction() || lips[1] < 0 || lips[2] >= 0)
     return false;
+  // Two of a junction's three sheets left on the edge (a cut along it took
+  // the third): the strip closes the wedge the third filled. Without the
+  // body (a fold) it joins the top to the bottom in front of the crease;
+  // without a leaf, the top or the bottom to the crease.
+  int body = -1, upper = -1, lower = -1;
   for (int k = 0; k < 2; ++k)
   {
-    const int upper = lips[k], lower = lips[1 - k];
-    if (facesCleft(collision, upper, 0) && !facesCleft(collision, upper, 1) &&
-        facesCleft(collision, lower, 1) && !facesCleft(collision, lower, 0))
-    {
-      lip = upper;
-      cleft = { { false, false } };
-      return true;
-    }
+    const bool minusCleft = facesCleft(collision, lips[k], 0);
+    const bool plusCleft = facesCleft(collision, lips[k], 1);
+    (minusCleft ? upper : (plusCleft ? lower : body)) = lips[k];
   }
-  return false;
+  if (body < 0 && upper >= 0 && lower >= 0)
+    lip = { upper, 1, { { false, false } } };
+  else if (upper < 0 && body >= 0 && lower >= 0)
+    lip = { body, 1, { { true, false } } };
+  else if (lower < 0 && body >= 0 && upper >= 0)
+    lip = { upper, 0, { { false, true } } }; // its - side borders the crease
+  else
+    return false;
+  return true;
 }
 
 bool CuttableVisualMesh::bodyColumnUsesCrease(const CuttableCollisionMesh& collision, int v) const
@@ -265,10 +265,10 @@ std::vector<bool> CuttableVisualMesh::columnNeeds(const CuttableCollisionMesh& c
     for (int k = 0; k < 3; ++k)
     {
       const int x = corners[k], y = corners[(k + 1) % 3];
-      int lip = -1;
-      std::array<bool, 2> cleft{ { false, false } };
-      if ((x != v && y != v) || !stripSides(collision, x, y, lip, cleft))
+      StripLip lip;
+      if ((x != v && y != v) || !stripSides(collision, x, y, lip))
         continue;
+      const std::array<bool, 2>& cleft = lip.cleft;
       // The strip there spans its lip's + paired vertex to its - one.
       auto position = [&](int side)
       {
@@ -282,6 +282,41 @@ std::vector<bool> CuttableVisualMesh::columnNeeds(const CuttableCollisionMesh& c
     }
   }
   return needed;
+}
+
+void CuttableVisualMesh::checkColumnWalls(const CuttableCollisionMesh& collision, int v)
+{
+  // Each segment of a junction vertex's column joins two cut walls. A bite
+  // through the body and one leaf on both sides of the vertex, the other
+  // leaf whole, leaves one collision vertex (one fan) with four walls on
+  // half its column: the visual would need a column per side.
+  const auto inner = static_cast<int>(endColumn(collision, v).vertices.size());
+  std::vector<std::array<int, 2>> stripEdges;
+  for (int T : collision.trianglesOfVertex(v))
+    for (int k = 0; k < 3; ++k)
+    {
+      const int x = collision.triangles()[T][k], y = collision.triangles()[T][(k + 1) % 3];
+      if (x == v || y == v)
+        stripEdges.push_back({ { std::min(x, y), std::max(x, y) } });
+    }
+  std::sort(stripEdges.begin(), stripEdges.end());
+  stripEdges.erase(std::unique(stripEdges.begin(), stripEdges.end()), stripEdges.end());
+  std::vector<int> walls(static_cast<std::size_t>(inner) + 1, 0);
+  for (const auto& [x, y] : stripEdges)
+  {
+    StripLip lip;
+    if (!stripSides(collision, x, y, lip))
+      continue;
+    const auto span = columnSpan(collision, v, lip.cleft);
+    for (int p = span[0]; p < span[1]; ++p)
+      walls[static_cast<std::size_t>(p)] += 1;
+  }
+  if (*std::max_element(walls.begin(), walls.end()) > 2)
+  {
+    throw Error("visual cut of '" + Mesh.name + "': more than two cut walls meet at junction " +
+                "vertex " + std::to_string(v) + " (a cut through the body and one leaf on both " +
+                "sides of it, the other leaf whole): not supported yet");
+  }
 }
 
 // A copy made by this cut takes over the column entries its root no longer
@@ -506,10 +541,10 @@ void CuttableVisualMesh::buildStrip(const CuttableCollisionMesh& collision,
   for (int t : strip.triangles)
     freeTriangle(t);
   strip.triangles.clear();
-  int region = -1;
-  std::array<bool, 2> cleft;
-  if (!stripSides(collision, a, b, region, cleft))
-    region = collision.trianglesOfEdge(a, b)[0];
+  StripLip lip;
+  if (!stripSides(collision, a, b, lip))
+    lip.triangle = collision.trianglesOfEdge(a, b)[0];
+  const int region = lip.triangle;
   const Vector3 outward = outwardAcross(collision, a, b);
   const auto paths = stripPaths(a, b, strip);
   const std::vector<int> columnA = stripColumn(collision, a, strip.cleft, outward);
@@ -547,7 +582,7 @@ void CuttableVisualMesh::buildStrip(const CuttableCollisionMesh& collision,
   for (std::size_t i = 0; i + 1 < rows[0].size(); ++i)
     alongPath.emplace(edgeKey(rows[0][i], rows[0][i + 1]), rows[0][i]);
   int forward = 0, backward = 0;
-  for (int t : Regions[region][1])
+  for (int t : Regions[region][lip.side])
   {
     const Triangle& face = Mesh.triangles[t];
     for (int k = 0; k < 3; ++k)
@@ -635,9 +670,8 @@ void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision
              std::array<int, 2>{ { std::min(context.root(x), context.root(y)),
                std::max(context.root(x), context.root(y)) } } })
       {
-        int lip = -1;
-        std::array<bool, 2> cleft;
-        if (stripSides(collision, a, b, lip, cleft))
+        StripLip lip;
+        if (stripSides(collision, a, b, lip))
           edges.push_back({ { a, b } });
       }
     }
@@ -646,15 +680,22 @@ void CuttableVisualMesh::updateCutSurface(const CuttableCollisionMesh& collision
   upgradeColumns(collision, edges, context);
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (const auto& ends : edges)
+    for (const int v : ends)
+      if (Paired[v][CreaseSlot] >= 0)
+        checkColumnWalls(collision, v);
   for (const auto& [a, b] : edges)
   {
     const std::size_t before = Mesh.vertexCount();
     auto [it, added] = Strips.emplace(edgeKey(a, b), CutStrip{});
     CutStrip& strip = it->second;
+    // The sides its lip faces now (a fold's strip whose leaves parted is
+    // one leaf's).
+    StripLip lip;
+    stripSides(collision, a, b, lip);
+    strip.cleft = lip.cleft;
     if (added)
     {
-      int lip = -1;
-      stripSides(collision, a, b, lip, strip.cleft);
       // As many rows as the longer end column has inner entries (a body's
       // strip at a junction vertex runs + -> crease -> -).
       makeStripRows(collision, a, b, stripRowCount(collision, a, b, strip), strip, context);

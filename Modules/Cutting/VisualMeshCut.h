@@ -353,14 +353,22 @@ private:
   /// yet are -1), and entry `index` of it, made if needed.
   EndColumn& endColumn(const CuttableCollisionMesh& collision, int collisionVertex);
   int columnVertex(int collisionVertex, int index, const Vector3& outward);
+  /// A strip's lip: the triangle whose region on `side` (0: -, 1: +)
+  /// borders its + path, and which of the strip's sides (-, +) take the
+  /// cleft's crease at a junction.
+  struct StripLip
+  {
+    int triangle = -1;
+    int side = 1;
+    std::array<bool, 2> cleft{ { false, false } };
+  };
   /// Whether collision edge (a, b) carries a strip (an opened edge, or a
-  /// fold: leaves left on a junction edge), its lip triangle (for a fold,
-  /// the upper leaf) and which of its sides (-, +) face the cleft.
-  bool stripSides(const CuttableCollisionMesh& collision,
-    int a,
-    int b,
-    int& lip,
-    std::array<bool, 2>& cleft) const;
+  /// junction edge left with two of its three sheets) and its lip.
+  bool stripSides(const CuttableCollisionMesh& collision, int a, int b, StripLip& lip) const;
+  bool creaseOnTheCut(const CuttableCollisionMesh& collision, int v) const;
+  /// Throws Error where more than two cut walls would share a segment of
+  /// junction vertex v's column.
+  void checkColumnWalls(const CuttableCollisionMesh& collision, int v);
   /// Per entry of v's column: whether a strip at v (an edge of one triangle
   /// there) spans it.
   std::vector<bool> columnNeeds(const CuttableCollisionMesh& collision, int v) const;
