@@ -139,24 +139,39 @@ void CuttableVisualMesh::splitStrip(std::uint64_t key,
   Strips[edgeKey(b, middle)] = std::move(second);
 }
 
+std::vector<CuttableVisualMesh::StripLip> CuttableVisualMesh::stripLipsAt(
+  const CuttableCollisionMesh& collision,
+  int v) const
+{
+  std::vector<std::array<int, 2>> edges;
+  for (int T : collision.trianglesOfVertex(v))
+    for (int k = 0; k < 3; ++k)
+    {
+      const int x = collision.triangles()[T][k], y = collision.triangles()[T][(k + 1) % 3];
+      if (x == v || y == v)
+        edges.push_back({ { std::min(x, y), std::max(x, y) } });
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<StripLip> lips;
+  for (const auto& [x, y] : edges)
+  {
+    StripLip lip;
+    if (stripSides(collision, x, y, lip))
+      lips.push_back(lip);
+  }
+  return lips;
+}
+
 bool CuttableVisualMesh::creaseOnTheCut(const CuttableCollisionMesh& collision, int v) const
 {
   // A strip at v reaches the crease (a leaf cut there): the crease then
   // lies on the cut surface. A cut through the body alone leaves it inside
   // the cleft's walls.
-  for (int T : collision.trianglesOfVertex(v))
-  {
-    const Triangle& corners = collision.triangles()[T];
-    for (int k = 0; k < 3; ++k)
-    {
-      const int x = corners[k], y = corners[(k + 1) % 3];
-      StripLip lip;
-      if ((x == v || y == v) && stripSides(collision, x, y, lip) &&
-          (pairedSlot(v, 0, lip.cleft[0]) == CreaseSlot ||
-            pairedSlot(v, 1, lip.cleft[1]) == CreaseSlot))
-        return true;
-    }
-  }
+  for (const StripLip& lip : stripLipsAt(collision, v))
+    if (pairedSlot(v, 0, lip.cleft[0]) == CreaseSlot ||
+        pairedSlot(v, 1, lip.cleft[1]) == CreaseSlot)
+      return true;
   return false;
 }
 
@@ -258,28 +273,12 @@ std::vector<bool> CuttableVisualMesh::columnNeeds(const CuttableCollisionMesh& c
 {
   const EndColumn& column = EndColumns.at(v);
   std::vector<bool> needed(column.vertices.size(), false);
-  const auto inner = static_cast<int>(column.vertices.size());
-  for (int T : collision.trianglesOfVertex(v))
+  for (const StripLip& lip : stripLipsAt(collision, v))
   {
-    const Triangle& corners = collision.triangles()[T];
-    for (int k = 0; k < 3; ++k)
-    {
-      const int x = corners[k], y = corners[(k + 1) % 3];
-      StripLip lip;
-      if ((x != v && y != v) || !stripSides(collision, x, y, lip))
-        continue;
-      const std::array<bool, 2>& cleft = lip.cleft;
-      // The strip there spans its lip's + paired vertex to its - one.
-      auto position = [&](int side)
-      {
-        const int slot = pairedSlot(v, side, cleft[side]);
-        if (slot == 1)
-          return 0;
-        return slot == CreaseSlot && column.throughCrease ? Settings.cutSurfaceRows + 1 : inner + 1;
-      };
-      for (int i = position(1) + 1; i < position(0); ++i)
-        needed[static_cast<std::size_t>(i - 1)] = true;
-    }
+    // The strip spans its lip's + paired vertex to its - one.
+    const auto span = columnSpan(column, v, lip.cleft);
+    for (int i = span[0] + 1; i < span[1]; ++i)
+      needed[static_cast<std::size_t>(i - 1)] = true;
   }
   return needed;
 }
@@ -291,22 +290,9 @@ void CuttableVisualMesh::checkColumnWalls(const CuttableCollisionMesh& collision
   // leaf whole, leaves one collision vertex (one fan) with four walls on
   // half its column: the visual would need a column per side.
   const auto inner = static_cast<int>(endColumn(collision, v).vertices.size());
-  std::vector<std::array<int, 2>> stripEdges;
-  for (int T : collision.trianglesOfVertex(v))
-    for (int k = 0; k < 3; ++k)
-    {
-      const int x = collision.triangles()[T][k], y = collision.triangles()[T][(k + 1) % 3];
-      if (x == v || y == v)
-        stripEdges.push_back({ { std::min(x, y), std::max(x, y) } });
-    }
-  std::sort(stripEdges.begin(), stripEdges.end());
-  stripEdges.erase(std::unique(stripEdges.begin(), stripEdges.end()), stripEdges.end());
   std::vector<int> walls(static_cast<std::size_t>(inner) + 1, 0);
-  for (const auto& [x, y] : stripEdges)
+  for (const StripLip& lip : stripLipsAt(collision, v))
   {
-    StripLip lip;
-    if (!stripSides(collision, x, y, lip))
-      continue;
     const auto span = columnSpan(collision, v, lip.cleft);
     for (int p = span[0]; p < span[1]; ++p)
       walls[static_cast<std::size_t>(p)] += 1;
@@ -463,30 +449,35 @@ Vector3 CuttableVisualMesh::columnPlace(int v, int index) const
   return (1.0 - s) * Mesh.positions[from] + s * Mesh.positions[to];
 }
 
-std::array<int, 2> CuttableVisualMesh::columnSpan(const CuttableCollisionMesh& collision,
+std::array<int, 2> CuttableVisualMesh::columnSpan(const EndColumn& column,
   int v,
-  const std::array<bool, 2>& cleft)
+  const std::array<bool, 2>& cleft) const
 {
   // Positions in the column with its ends: 0 the + paired vertex, then the
-  // inner entries, then the - paired vertex.
-  const EndColumn& column = endColumn(collision, v);
+  // inner entries, then the - paired vertex (the crease's, on a column
+  // that passes it by, counts as the - one).
   const auto inner = static_cast<int>(column.vertices.size());
   auto position = [&](int slot)
   {
     if (slot == 1)
       return 0;
-    if (slot != CreaseSlot)
-      return inner + 1;
-    if (!column.throughCrease)
-    {
-      throw Error("visual cut of '" + Mesh.name +
-                  "': a leaf's cut surface reaches junction "
-                  "vertex " +
-                  std::to_string(v) + " after a cut through its body alone");
-    }
-    return Settings.cutSurfaceRows + 1;
+    return slot == CreaseSlot && column.throughCrease ? Settings.cutSurfaceRows + 1 : inner + 1;
   };
   return { { position(pairedSlot(v, 1, cleft[1])), position(pairedSlot(v, 0, cleft[0])) } };
+}
+
+std::array<int, 2> CuttableVisualMesh::columnSpan(const CuttableCollisionMesh& collision,
+  int v,
+  const std::array<bool, 2>& cleft)
+{
+  const EndColumn& column = endColumn(collision, v);
+  if (!column.throughCrease &&
+      (pairedSlot(v, 0, cleft[0]) == CreaseSlot || pairedSlot(v, 1, cleft[1]) == CreaseSlot))
+  {
+    throw Error("visual cut of '" + Mesh.name + "': a leaf's cut surface reaches junction vertex " +
+                std::to_string(v) + " after a cut through its body alone");
+  }
+  return columnSpan(column, v, cleft);
 }
 
 std::vector<int> CuttableVisualMesh::stripColumn(const CuttableCollisionMesh& collision,

@@ -365,6 +365,8 @@ private:
   /// Whether collision edge (a, b) carries a strip (an opened edge, or a
   /// junction edge left with two of its three sheets) and its lip.
   bool stripSides(const CuttableCollisionMesh& collision, int a, int b, StripLip& lip) const;
+  /// The lips of the strips at collision vertex v, each strip once.
+  std::vector<StripLip> stripLipsAt(const CuttableCollisionMesh& collision, int v) const;
   bool creaseOnTheCut(const CuttableCollisionMesh& collision, int v) const;
   /// Throws Error where more than two cut walls would share a segment of
   /// junction vertex v's column.
@@ -405,6 +407,9 @@ private:
   std::array<int, 2> columnSpan(const CuttableCollisionMesh& collision,
     int v,
     const std::array<bool, 2>& cleft);
+  std::array<int, 2> columnSpan(const EndColumn& column,
+    int v,
+    const std::array<bool, 2>& cleft) const;
   /// A strip's + and - paths on edge (a, b).
   std::array<const std::vector<int>*, 2> stripPaths(int a, int b, const CutStrip& strip) const;
   std::vector<int> openPart(const std::vector<int>& path, int a, int b) const;
