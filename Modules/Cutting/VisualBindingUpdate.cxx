@@ -788,7 +788,8 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   finishEdgePoints(context);
   openVisualMesh(collision, context);
   updateEdgePaths(collision, context);
-  dropUnseenJunctionPaths(collision, context);
+  if (HasJunctions)
+    dropUnseenJunctionPaths(collision, context);
   const auto cutSurfaceStart = std::chrono::steady_clock::now();
   updateCutSurface(collision, context);
   result.cutSurfaceMilliseconds =

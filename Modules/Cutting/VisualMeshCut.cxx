@@ -449,6 +449,8 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
       }
     }
   }
+  HasJunctions = std::any_of(
+    Paths.begin(), Paths.end(), [](const auto& entry) { return entry.second.junction(); });
 }
 
 bool CuttableVisualMesh::facesCleft(const CuttableCollisionMesh& collision, int T, int side)

@@ -446,6 +446,9 @@ private:
   std::vector<VisualMaterial> TriangleMaterial;
   /// Per collision vertex, per path slot (- / + / crease, -1 if none).
   std::vector<std::array<int, 3>> Paired;
+  /// The collision mesh has a horizontal cleavage's junction (cuts never
+  /// make one): the junction-only stages run only then.
+  bool HasJunctions = false;
   /// Per collision triangle: its region's visual triangles on side -1, +1.
   std::vector<std::array<std::vector<int>, 2>> Regions;
   std::unordered_map<std::uint64_t, EdgePaths> Paths;
