@@ -652,6 +652,138 @@ void CuttableCollisionMesh::splitTriangle(const TriangleFeatures& f, CollisionCu
   result.splits.push_back(std::move(split));
 }
 
+template <typename Member>
+UnionFind CuttableCollisionMesh::joinAcrossUncutEdges(int v,
+  const std::vector<int>& fan,
+  Member member) const
+{
+  UnionFind groups(fan.size());
+  for (std::size_t i = 0; i < fan.size(); ++i)
+  {
+    for (int k = 0; k < 3 && member(fan[i]); ++k)
+    {
+      const int a = Triangles[fan[i]][k], b = Triangles[fan[i]][(k + 1) % 3];
+      if ((a != v && b != v) || CutEdges.count(edgeKey(a, b)))
+      {
+        continue;
+      }
+      for (int other : trianglesOfEdge(a, b))
+      {
+        const auto found = std::find(fan.begin(), fan.end(), other);
+        if (other >= 0 && other != fan[i] && found != fan.end() && member(other))
+        {
+          groups.unite(static_cast<int>(i), static_cast<int>(found - fan.begin()));
+        }
+      }
+    }
+  }
+  return groups;
+}
+
+std::vector<int> CuttableCollisionMesh::fanBranches(int v, const std::vector<int>& fan) const
+{
+  // Through every other triangle of an uncut edge: a junction's three stay
+  // one fan while their edge is uncut.
+  UnionFind groups = joinAcrossUncutEdges(v, fan, [](int) { return true; });
+  std::vector<int> branch(fan.size());
+  for (std::size_t i = 0; i < fan.size(); ++i)
+  {
+    branch[i] = groups.find(static_cast<int>(i));
+  }
+  return branch;
+}
+
+// A junction vertex of a horizontal cleavage where the body and one leaf
+// are notched (a bite's outline through the vertex) and the other leaf is
+// whole: the whole leaf alone holds the notch's two sides together there,
+// so the surface half the notched leaf shares with the body falls into two
+// fans that touch at one point. No sheet mesh carries that (the visual cut
+// would need two columns at one collision vertex), so the whole leaf is
+// cut along one of its edges at the vertex: the shortest whose far end is
+// inside the tissue (a crack, not a cut through). Returns that edge, or
+// (-1, -1) where none is needed or none can serve.
+std::array<int, 2> CuttableCollisionMesh::notchedJunctionCut(int v,
+  const std::vector<int>& fan,
+  const std::vector<int>& branch,
+  SurfaceHalf half) const
+{
+  const std::array<int, 2> none{ { -1, -1 } };
+  auto faces = [&](int t) { return Halves[t][0] == half || Halves[t][1] == half; };
+  auto cleft = [&](int t)
+  { return Halves[t][0] == SurfaceHalf::Cleft || Halves[t][1] == SurfaceHalf::Cleft; };
+  if (!std::any_of(fan.begin(), fan.end(), cleft))
+  {
+    return none;
+  }
+  UnionFind sides = joinAcrossUncutEdges(v, fan, faces);
+  for (std::size_t i = 0; i < fan.size(); ++i)
+  {
+    for (std::size_t j = i + 1; j < fan.size(); ++j)
+    {
+      if (branch[i] != branch[j] || !faces(fan[i]) || !faces(fan[j]) ||
+          sides.find(static_cast<int>(i)) == sides.find(static_cast<int>(j)))
+      {
+        continue;
+      }
+      return wholeLeafEdge(v, fan, branch, branch[i], faces);
+    }
+  }
+  return none;
+}
+
+template <typename Faces>
+std::array<int, 2> CuttableCollisionMesh::wholeLeafEdge(int v,
+  const std::vector<int>& fan,
+  const std::vector<int>& branch,
+  int component,
+  Faces faces) const
+{
+  std::array<int, 2> best{ { -1, -1 } };
+  double bestLength = 0.0;
+  bool bestInside = false;
+  for (std::size_t i = 0; i < fan.size(); ++i)
+  {
+    if (branch[i] != component || faces(fan[i]))
+    {
+      continue;
+    }
+    for (int w : Triangles[fan[i]])
+    {
+      const auto onEdge = trianglesOfEdge(v, w);
+      if (w == v || onEdge[1] < 0 || onEdge[2] >= 0 || faces(onEdge[0]) || faces(onEdge[1]) ||
+          CutEdges.count(edgeKey(v, w)))
+      {
+        continue; // not an inner edge of the whole leaf
+      }
+      const bool inside = !onBorder(w);
+      const double length = (RestPositions[w] - RestPositions[v]).norm();
+      if (best[0] < 0 || (inside && !bestInside) || (inside == bestInside && length < bestLength))
+      {
+        best = { { std::min(v, w), std::max(v, w) } };
+        bestLength = length;
+        bestInside = inside;
+      }
+    }
+  }
+  return best;
+}
+
+bool CuttableCollisionMesh::onBorder(int w) const
+{
+  for (int t : VertexTriangles[w])
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = Triangles[t][k], b = Triangles[t][(k + 1) % 3];
+      if ((a == w || b == w) && trianglesOfEdge(a, b)[1] < 0)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 void CuttableCollisionMesh::openAlongCut(CollisionCutResult& result)
 {
   std::vector<int> vertices;
@@ -662,36 +794,33 @@ void CuttableCollisionMesh::openAlongCut(CollisionCutResult& result)
   }
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  for (int v : vertices)
+  // (Indices: the crack a notched junction needs appends its far end.)
+  for (std::size_t next = 0; next < vertices.size(); ++next)
   {
+    const int v = vertices[next];
     const std::vector<int> fan = VertexTriangles[v];
-    UnionFind groups(fan.size());
-    for (std::size_t i = 0; i < fan.size(); ++i)
+    if (fan.empty())
     {
-      for (int k = 0; k < 3; ++k)
+      continue;
+    }
+    std::vector<int> branch = fanBranches(v, fan);
+    for (const SurfaceHalf half : { SurfaceHalf::Negative, SurfaceHalf::Positive })
+    {
+      const std::array<int, 2> crack = notchedJunctionCut(v, fan, branch, half);
+      if (crack[0] >= 0)
       {
-        const int a = Triangles[fan[i]][k], b = Triangles[fan[i]][(k + 1) % 3];
-        if ((a != v && b != v) || CutEdges.count(edgeKey(a, b)))
-        {
-          continue;
-        }
-        // Through every other triangle of the edge: a junction's three
-        // stay one fan while their edge is uncut.
-        for (int other : trianglesOfEdge(a, b))
-        {
-          const auto found = std::find(fan.begin(), fan.end(), other);
-          if (other >= 0 && other != fan[i] && found != fan.end())
-          {
-            groups.unite(static_cast<int>(i), static_cast<int>(found - fan.begin()));
-          }
-        }
+        CutEdges.insert(edgeKey(crack[0], crack[1]));
+        result.cutEdges.push_back(crack);
+        vertices.push_back(crack[0] == v ? crack[1] : crack[0]);
+        branch = fanBranches(v, fan);
       }
     }
-    std::vector<int> copyOfRoot(fan.size(), -1);
+    const int components = *std::max_element(branch.begin(), branch.end()) + 1;
+    std::vector<int> copyOfRoot(static_cast<std::size_t>(components), -1);
     for (std::size_t i = 0; i < fan.size(); ++i)
     {
-      const int root = groups.find(static_cast<int>(i));
-      if (root == groups.find(0))
+      const int root = branch[i];
+      if (root == branch[0])
       {
         continue; // the first fan keeps the vertex
       }

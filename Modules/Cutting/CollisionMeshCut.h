@@ -29,6 +29,7 @@
 #include "CollisionSides.h"
 #include "ThinTissueCuttingModule.h"
 #include "TriangleMesh.h"
+#include "UnionFind.h"
 
 #include <array>
 #include <cstdint>
@@ -153,6 +154,25 @@ private:
     int j,
     CollisionCutResult& result) const;
   void openAlongCut(CollisionCutResult& result);
+  /// Branch label per triangle of v's fan (5.3.1): fans joined through
+  /// uncut edges, a junction's three sheets one fan while their edge is.
+  std::vector<int> fanBranches(int v, const std::vector<int>& fan) const;
+  /// v's fan joined through its uncut edges, among the triangles `member`
+  /// accepts.
+  template <typename Member>
+  UnionFind joinAcrossUncutEdges(int v, const std::vector<int>& fan, Member member) const;
+  std::array<int, 2> notchedJunctionCut(int v,
+    const std::vector<int>& fan,
+    const std::vector<int>& branch,
+    SurfaceHalf half) const;
+  template <typename Faces>
+  std::array<int, 2> wholeLeafEdge(int v,
+    const std::vector<int>& fan,
+    const std::vector<int>& branch,
+    int component,
+    Faces faces) const;
+  /// Whether vertex w lies on the mesh's border (an edge with one triangle).
+  bool onBorder(int w) const;
   void keepCutEdgesOfCopy(int t, int v, int copy);
   /// A closed cut edge left to two leaves oriented alike (their body cut
   /// off along their junction edge).

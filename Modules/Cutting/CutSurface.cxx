@@ -287,8 +287,9 @@ void CuttableVisualMesh::checkColumnWalls(const CuttableCollisionMesh& collision
 {
   // Each segment of a junction vertex's column joins two cut walls. A bite
   // through the body and one leaf on both sides of the vertex, the other
-  // leaf whole, leaves one collision vertex (one fan) with four walls on
-  // half its column: the visual would need a column per side.
+  // leaf whole, would leave four walls on half its column; the collision
+  // cut cracks the whole leaf there (notchedJunctionCut), so this is met
+  // only where that leaf has no edge of its own at the vertex to crack.
   const auto inner = static_cast<int>(endColumn(collision, v).vertices.size());
   std::vector<int> walls(static_cast<std::size_t>(inner) + 1, 0);
   for (const StripLip& lip : stripLipsAt(collision, v))
@@ -301,7 +302,7 @@ void CuttableVisualMesh::checkColumnWalls(const CuttableCollisionMesh& collision
   {
     throw Error("visual cut of '" + Mesh.name + "': more than two cut walls meet at junction " +
                 "vertex " + std::to_string(v) + " (a cut through the body and one leaf on both " +
-                "sides of it, the other leaf whole): not supported yet");
+                "sides of it, the other leaf whole and without an edge of its own there to crack)");
   }
 }
 

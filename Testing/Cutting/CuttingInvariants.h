@@ -73,7 +73,9 @@ inline ::testing::AssertionResult collisionMeshIsValid(const CuttableCollisionMe
         if (sides.halves[t][slot] != kept &&
             !(kept == SurfaceHalf::Cleft && sides.halves[t][slot] == plain))
           return ::testing::AssertionFailure()
-                 << "triangle " << t << " faces other halves than the cut kept for it";
+                 << "triangle " << t << " faces other halves than the cut kept for it: slot "
+                 << slot << " kept " << int(kept) << " analysed " << int(sides.halves[t][slot])
+                 << " corners " << tris[t][0] << " " << tris[t][1] << " " << tris[t][2];
       }
   }
   catch (const InvalidInputError& e)

@@ -383,6 +383,56 @@ TEST(CollisionMeshCut, ACutAlongTheJunctionSeparatesTheBodyAndBothLeaves)
   EXPECT_EQ(mesh.halves(), halves);
 }
 
+// A bite through the body and the lower leaf whose outline passes a
+// junction vertex (two V notches, tips at the vertex, the upper leaf whole)
+// would leave the two sides of the notches held at one point by the upper
+// leaf alone; the upper leaf is cracked along one of its edges there
+// instead, so each side keeps a junction vertex of its own.
+TEST(CollisionMeshCut, ANotchedJunctionCracksTheWholeLeaf)
+{
+  CuttableCollisionMesh mesh = cleft(4);
+  const Vector3 tip(0, 2, 0);
+  auto bodyRay = [&](double y)
+  {
+    return Blade::sweptSegment(
+      Vector3(-2.5, y, -1), Vector3(-2.5, y, 1), tip - Vector3(0, 0, 1), tip + Vector3(0, 0, 1));
+  };
+  // Below the upper leaf (z = 0.3 x) but for its edge at the tip.
+  auto lowerLeafRay = [&](double y)
+  {
+    return Blade::sweptSegment(
+      tip - Vector3(0, 0, 1), tip, Vector3(2.5, y, -1), Vector3(2.5, y, 0.12 * 2.5));
+  };
+  for (const Blade& stroke : { bodyRay(0.5), bodyRay(3.5), lowerLeafRay(0.5), lowerLeafRay(3.5) })
+  {
+    mesh.cut(stroke, mesh.restPositions());
+    ASSERT_TRUE(collisionMeshIsValid(mesh));
+  }
+  // The body's and the lower leaf's wedges come free; the rest holds.
+  EXPECT_EQ(pieceCount(mesh), 3);
+  std::vector<int> atTip;
+  for (int v = 0; v < static_cast<int>(mesh.vertexCount()); ++v)
+    if ((mesh.restPositions()[v] - tip).norm() < 1e-9)
+      atTip.push_back(v);
+  int junctions = 0, upperLeafBorders = 0;
+  for (int v : atTip)
+  {
+    bool junction = false;
+    for (int t : mesh.trianglesOfVertex(v))
+      for (int w : mesh.triangles()[t])
+      {
+        const auto onEdge = mesh.trianglesOfEdge(v, w);
+        junction = junction || (w != v && onEdge[2] >= 0);
+        const bool upper = mesh.restPositions()[w].z() > 1e-9;
+        upperLeafBorders += (w != v && upper && onEdge[1] < 0) ? 1 : 0;
+      }
+    junctions += junction ? 1 : 0;
+  }
+  EXPECT_EQ(junctions, 2) << "each side of the notches keeps a junction of its own";
+  // The crack's two lips (each border edge seen from its one triangle).
+  EXPECT_EQ(upperLeafBorders, 2);
+}
+
 TEST(CollisionMeshCut, AnEdgeOfFourTrianglesIsRefusedByName)
 {
   try
