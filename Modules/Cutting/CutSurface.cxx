@@ -206,7 +206,11 @@ int CuttableVisualMesh::columnVertex(int collisionVertex, int index, const Vecto
   int& entry = EndColumns.at(collisionVertex).vertices[static_cast<std::size_t>(index)];
   if (entry >= 0)
     return entry;
-  const int w = addVertexCopy(Paired[collisionVertex][1]);
+  // 5.3.4 at a cleavage: a copy of a junction vertex that holds the lower
+  // leaf alone has no + paired vertex (-1); the new vertex takes its
+  // attributes from the - one.
+  const std::array<int, 3>& paired = Paired[collisionVertex];
+  const int w = addVertexCopy(paired[1] >= 0 ? paired[1] : paired[0]);
   Mesh.positions[w] = columnPlace(collisionVertex, index);
   Mesh.positions[w] += jaggedOffset(Mesh.positions[w], outward);
   if (Mesh.hasNormals())

@@ -675,3 +675,50 @@ TEST(TissueCutterRegression, AVisualVertexHangingOnANeighbouringTriangleFollowsI
   };
   cutInTurn(steak, bundle->binding, 1, blades);
 }
+
+// A copy of a junction vertex that keeps the lower leaf alone has no +
+// paired visual vertex (-1). The cut-surface vertices of its column were
+// copied from that missing vertex: positions, normals and bindings were
+// overwritten afterwards, but point attributes kept what lay before their
+// arrays (found by AddressSanitizer on the cleaved soak, episode 4; the
+// two of its blades that still fail). A constant attribute must stay so.
+TEST(TissueCutterRegression, ACutSurfaceVertexAtALowerLeafJunctionCopyKeepsItsAttributes)
+{
+  MeniscusParameters parameters;
+  parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
+  const MeniscusModel meniscus = makeMeniscus(parameters);
+  VisualCollisionBinding binding = bindVisualToCollision(meniscus.visual, meniscus.collision);
+  const double label = 7.0;
+  binding.visual.pointAttributes.set(
+    "Label", 1, std::vector<double>(binding.visual.vertexCount(), label));
+  CorotationalHexFem fem(meniscus.simulation, softTissue(), smallSteps());
+  TissueCutterSettings settings;
+  settings.visual.cutSurfaceRows = 1;
+  TissueCutter cutter(binding, meniscus.simulation, &fem, settings);
+  const std::vector<Blade> blades = {
+    quad({ Vector3(-44.331798569154898, -11.096932841269819, -46.039685231055472),
+      Vector3(-23.650537887947891, -15.783357078992744, 51.384199261787586),
+      Vector3(-7.626829667893551, 10.225801853188919, 52.853132909429661),
+      Vector3(-28.30809034910056, 14.912226090911844, -44.570751583413397) }),
+    quad({ Vector3(-29.896424530946252, -6.8505944092327304, -45.105329386891938),
+      Vector3(-29.896424530946252, -6.8505944092327304, 52.31855510595112),
+      Vector3(-27.43261655498409, -4.7525101461534298, 52.443058672996898),
+      Vector3(-27.43261655498409, -4.7525101461534298, -44.98082581984616) }),
+  };
+  for (std::size_t b = 0; b < blades.size(); ++b)
+  {
+    const auto report = cutter.cut(blades[b]);
+    ASSERT_TRUE(report.changed()) << "blade " << b;
+    ASSERT_EQ(report.visualError, "") << "blade " << b;
+    ASSERT_TRUE(cutterIsConsistent(cutter, meniscus.simulation)) << "blade " << b;
+  }
+  // The case: a junction vertex (crease slot) with a - but no + vertex.
+  const auto& paired = cutter.visual().pairedVisualVertices();
+  EXPECT_TRUE(std::any_of(paired.begin(),
+    paired.end(),
+    [](const std::array<int, 3>& p) { return p[0] >= 0 && p[1] < 0 && p[2] >= 0; }));
+  const auto& labels = cutter.visual().mesh().pointAttributes.get("Label").values;
+  ASSERT_EQ(labels.size(), cutter.visual().mesh().vertexCount());
+  for (std::size_t v = 0; v < labels.size(); ++v)
+    EXPECT_NEAR(labels[v], label, 1e-9) << "visual vertex " << v;
+}
