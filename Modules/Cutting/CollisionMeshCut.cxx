@@ -715,18 +715,23 @@ std::array<int, 2> CuttableCollisionMesh::notchedJunctionCut(int v,
   {
     return none;
   }
+  // Per branch, the first fan of this half met (branch labels are fan
+  // indices): a second one in the same branch calls for the crack.
   UnionFind sides = joinAcrossUncutEdges(v, fan, faces);
+  std::vector<int> firstSide(fan.size(), -1);
   for (std::size_t i = 0; i < fan.size(); ++i)
   {
-    for (std::size_t j = i + 1; j < fan.size(); ++j)
+    if (!faces(fan[i]))
     {
-      if (branch[i] != branch[j] || !faces(fan[i]) || !faces(fan[j]) ||
-          sides.find(static_cast<int>(i)) == sides.find(static_cast<int>(j)))
-      {
-        continue;
-      }
+      continue;
+    }
+    const int side = sides.find(static_cast<int>(i));
+    int& first = firstSide[static_cast<std::size_t>(branch[i])];
+    if (first >= 0 && first != side)
+    {
       return wholeLeafEdge(v, fan, branch, branch[i], faces);
     }
+    first = side;
   }
   return none;
 }
