@@ -915,6 +915,34 @@ void CuttableCollisionMesh::updateTips(const std::vector<int>& sweepFeatures,
   }
 }
 
+CollisionCutResult CuttableCollisionMesh::cutAlongEdges(std::vector<std::array<int, 2>> edges)
+{
+  for (auto& edge : edges)
+  {
+    if (edge[0] > edge[1])
+      std::swap(edge[0], edge[1]);
+    if (edge[0] < 0 || edge[1] >= static_cast<int>(vertexCount()) ||
+        trianglesOfEdge(edge[0], edge[1])[1] < 0)
+    {
+      throw InvalidInputError("cut of collision mesh '" + Name + "' along its edges: (" +
+                              std::to_string(edge[0]) + ", " + std::to_string(edge[1]) +
+                              ") is no edge between two of its triangles");
+    }
+  }
+  CollisionCutResult result;
+  for (const auto& edge : edges)
+  {
+    if (CutEdges.insert(edgeKey(edge[0], edge[1])).second)
+      result.cutEdges.push_back(edge);
+  }
+  openAlongCut(result);
+  std::sort(result.changedTriangles.begin(), result.changedTriangles.end());
+  result.changedTriangles.erase(
+    std::unique(result.changedTriangles.begin(), result.changedTriangles.end()),
+    result.changedTriangles.end());
+  return result;
+}
+
 CollisionCutResult CuttableCollisionMesh::cut(const Blade& blade,
   const std::vector<Vector3>& current,
   const CollisionCutSettings& settings)

@@ -132,6 +132,11 @@ public:
   CollisionCutResult cut(const Blade& blade,
     const std::vector<Vector3>& current,
     const CollisionCutSettings& settings = {});
+  /// Cuts along existing edges, each between two or three triangles (the
+  /// border of what a shaver removes, 6.4.3): no triangle is split, the
+  /// mesh opens along them. Throws InvalidInputError (mesh untouched) on a
+  /// pair that is no such edge.
+  CollisionCutResult cutAlongEdges(std::vector<std::array<int, 2>> edges);
 
 private:
   struct Crossing;

@@ -467,11 +467,18 @@ TissueCutReport TissueCutter::cut(const Blade& blade)
   const std::vector<Vector3> current = currentCollisionPositions();
   report.collision = Collision.cut(blade, current, Settings.collision);
   report.collisionMilliseconds = millisecondsSince(start);
-  if (!report.collision.changed())
+  if (report.collision.changed() && followCollisionCut(report))
   {
-    report.totalMilliseconds = millisecondsSince(start);
-    return report;
+    const auto removalStart = Clock::now();
+    handleFreePieces(report);
+    report.removalMilliseconds = millisecondsSince(removalStart);
   }
+  report.totalMilliseconds = millisecondsSince(start);
+  return report;
+}
+
+bool TissueCutter::followCollisionCut(TissueCutReport& report)
+{
   // Pieces of a removed piece's triangles stay removed.
   Active.resize(Collision.triangleCount(), 1);
   for (const auto& split : report.collision.splits)
@@ -484,33 +491,82 @@ TissueCutReport TissueCutter::cut(const Blade& blade)
   const auto embeddingStart = Clock::now();
   report.reembeddedCollisionVertices = reembedCollision(report);
   report.embeddingMilliseconds = millisecondsSince(embeddingStart);
-  if (HasVisual && !VisualFailed && report.changed())
+  if (!HasVisual || VisualFailed)
+    return true;
+  const auto visualStart = Clock::now();
+  try
   {
-    const auto visualStart = Clock::now();
-    try
-    {
-      report.visual = Visual.cut(Collision, report.collision);
-    }
-    catch (const std::exception& error)
-    {
-      // The collision and simulation meshes are cut already: the tissue
-      // goes on without its visual cut rather than stop (the visual mesh
-      // keeps its last state and its embedding).
-      VisualFailed = true;
-      SinglePiece = false; // its pieces are looked at whole next time
-      report.visualError = "visual cut of '" + Visual.mesh().name + "' failed: " + error.what() +
-                           "; the visual mesh is no longer cut";
-      report.totalMilliseconds = millisecondsSince(start);
-      return report;
-    }
-    report.visualMilliseconds = millisecondsSince(visualStart);
-    const auto reembedStart = Clock::now();
-    report.reembeddedVisualVertices = reembedVisual(report);
-    report.visualEmbeddingMilliseconds = millisecondsSince(reembedStart);
+    report.visual = Visual.cut(Collision, report.collision);
   }
-  const auto removalStart = Clock::now();
-  handleFreePieces(report);
-  report.removalMilliseconds = millisecondsSince(removalStart);
+  catch (const std::exception& error)
+  {
+    // The collision and simulation meshes are cut already: the tissue goes
+    // on without its visual cut rather than stop (the visual mesh keeps its
+    // last state and its embedding).
+    VisualFailed = true;
+    SinglePiece = false; // its pieces are looked at whole next time
+    report.visualError = "visual cut of '" + Visual.mesh().name + "' failed: " + error.what() +
+                         "; the visual mesh is no longer cut";
+    return false;
+  }
+  report.visualMilliseconds = millisecondsSince(visualStart);
+  const auto reembedStart = Clock::now();
+  report.reembeddedVisualVertices = reembedVisual(report);
+  report.visualEmbeddingMilliseconds = millisecondsSince(reembedStart);
+  return true;
+}
+
+TissueCutReport TissueCutter::removeTriangles(const std::vector<int>& triangles)
+{
+  const auto start = Clock::now();
+  const auto count = static_cast<int>(Collision.triangleCount());
+  std::vector<int> removed;
+  for (int t : triangles)
+  {
+    if (t < 0 || t >= count)
+    {
+      throw InvalidInputError("removal from collision mesh '" + Collision.name() + "': triangle " +
+                              std::to_string(t) + " is not one of its " + std::to_string(count));
+    }
+    if (Active[t])
+      removed.push_back(t);
+  }
+  std::sort(removed.begin(), removed.end());
+  removed.erase(std::unique(removed.begin(), removed.end()), removed.end());
+  TissueCutReport report;
+  if (removed.empty())
+    return report;
+  // The border between the removed triangles and the rest opens (a cut
+  // along edges: nothing is split, traced or re-meshed), so that the
+  // removed ones are a piece of their own, and the rest's cut surface
+  // closes the opening (6.4.3).
+  std::vector<std::array<int, 2>> border;
+  const auto& corners = Collision.triangles();
+  for (int t : removed)
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = corners[t][k], b = corners[t][(k + 1) % 3];
+      for (int other : Collision.trianglesOfEdge(a, b))
+        if (other >= 0 && Active[other] &&
+            !std::binary_search(removed.begin(), removed.end(), other))
+          border.push_back({ { std::min(a, b), std::max(a, b) } });
+    }
+  std::sort(border.begin(), border.end());
+  border.erase(std::unique(border.begin(), border.end()), border.end());
+  report.collision = Collision.cutAlongEdges(border);
+  report.collisionMilliseconds = millisecondsSince(start);
+  if (!report.collision.changed() || followCollisionCut(report))
+  {
+    const auto removalStart = Clock::now();
+    if (Settings.freePieces == FreePieceHandling::HandOver)
+      report.handedOver.push_back(extractPiece(removed));
+    removePiece(removed);
+    ++report.removedPieces;
+    // What the removal left apart from the rest (a bridge shaved through).
+    if (report.collision.changed())
+      handleFreePieces(report);
+    report.removalMilliseconds = millisecondsSince(removalStart);
+  }
   report.totalMilliseconds = millisecondsSince(start);
   return report;
 }

@@ -135,6 +135,15 @@ public:
   /// changes nothing. Throws InvalidInputError, with the tissue untouched,
   /// on a bad blade (empty, NaN, degenerate).
   TissueCutReport cut(const Blade& blade);
+  /// Piecewise removal (6.4.3, a running shaver): the given collision
+  /// triangles (inactive ones ignored) go, with the visual triangles bound
+  /// to them; the tissue opens along their border, whose cut surface closes
+  /// the visual mesh. They are handed over as one piece when freePieces
+  /// says so (dropped otherwise), and whatever the removal left apart is
+  /// handled like a cut's free pieces. Nothing is split or re-meshed: it
+  /// costs what lies around the border. Throws InvalidInputError, the
+  /// tissue untouched, on an index that is no triangle.
+  TissueCutReport removeTriangles(const std::vector<int>& triangles);
 
   /// The settings of the cuts to come, changed between cuts (a settings
   /// panel): snapping, free-piece handling, fragment size and the visual
@@ -191,6 +200,9 @@ public:
   CutSurfaceRoughness cutRimRoughness() const;
 
 private:
+  /// The simulation, embedding and visual stages of a collision cut in
+  /// `report`; false when the visual cut failed (visualError set).
+  bool followCollisionCut(TissueCutReport& report);
   void updateSolver(const HexahedronDuplicationResult& duplication);
   std::vector<int> reembedCollision(const TissueCutReport& report);
   std::vector<int> reembedVisual(const TissueCutReport& report);

@@ -129,6 +129,48 @@ Blade InstrumentAction::shaverBite(const RigidPose& pose) const
     placedOutline(Model.biteOutline, pose, -reach), placedOutline(Model.biteOutline, pose, reach));
 }
 
+std::vector<int> InstrumentAction::shavedTriangles(const TissueCutter& cutter,
+  const RigidPose& pose) const
+{
+  // The window outline across the tool's x axis, and its extent along it.
+  const std::vector<Vector3>& outline = Model.biteOutline;
+  double low = 1e300, high = -1e300;
+  for (const Vector3& p : outline)
+  {
+    low = std::min(low, p.x() - Settings.shaverReach);
+    high = std::max(high, p.x() + Settings.shaverReach);
+  }
+  auto inside = [&](const Vector3& world)
+  {
+    const Vector3 q = pose.rotation.transpose() * (world - pose.translation);
+    if (q.x() < low || q.x() > high)
+      return false;
+    bool in = false;
+    for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++)
+    {
+      const Vector3& a = outline[i];
+      const Vector3& b = outline[j];
+      if ((a.z() > q.z()) != (b.z() > q.z()) &&
+          q.y() < (b.y() - a.y()) * (q.z() - a.z()) / (b.z() - a.z()) + a.y())
+        in = !in;
+    }
+    return in;
+  };
+  const std::vector<Vector3> x = cutter.currentCollisionPositions();
+  const auto& triangles = cutter.collision().triangles();
+  std::vector<int> shaved;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+  {
+    if (!cutter.isActive(static_cast<int>(t)))
+      continue;
+    const Triangle& c = triangles[t];
+    if (inside(x[c[0]]) || inside(x[c[1]]) || inside(x[c[2]]) ||
+        inside((x[c[0]] + x[c[1]] + x[c[2]]) / 3.0))
+      shaved.push_back(static_cast<int>(t));
+  }
+  return shaved;
+}
+
 std::pair<Vector3, double> InstrumentAction::contourReach(const RigidPose& pose) const
 {
   Vector3 centre = Vector3::Zero();
@@ -248,6 +290,12 @@ InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
     Operations += result.contoured() ? 1 : 0;
     return result;
   }
+  if (result.kind == OperationKind::Shave)
+  {
+    Previous = command;
+    result.report = cutter.removeTriangles(shavedTriangles(cutter, command.pose));
+    return takeRemoved(result);
+  }
   const Blade blade =
     result.kind == OperationKind::None ? Blade{} : bladeBetween(Previous, command);
   Previous = command;
@@ -267,12 +315,17 @@ InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
     result.kind = OperationKind::None;
     return result;
   }
+  return takeRemoved(result);
+}
+
+InstrumentActionResult& InstrumentAction::takeRemoved(InstrumentActionResult& result)
+{
   for (const TissuePiece& piece : result.report.handedOver)
   {
     result.pieceVolumes.push_back(restVolume(piece));
     result.removedVolume += result.pieceVolumes.back();
   }
-  Operations += result.report.changed() ? 1 : 0;
+  Operations += result.report.changed() || result.report.removedPieces > 0 ? 1 : 0;
   return result;
 }
 

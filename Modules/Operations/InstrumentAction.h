@@ -149,8 +149,14 @@ public:
   /// from below the jaw to the open moving jaw (for tests and drawing).
   Blade punchBite(const RigidPose& pose) const;
   /// The shaver's bite at `pose`: its window outline swept through the
-  /// window's plane, `shaverReach` either side.
+  /// window's plane, `shaverReach` either side (the prism whose triangles
+  /// the running shaver removes, as a blade for drawing).
   Blade shaverBite(const RigidPose& pose) const;
+  /// The collision triangles of `cutter`'s tissue a removing shaver at
+  /// `pose` takes (6.4.3): those with a corner or their centre (current
+  /// positions) in the prism its window outline sweeps, `shaverReach`
+  /// either side of the window's plane.
+  std::vector<int> shavedTriangles(const TissueCutter& cutter, const RigidPose& pose) const;
   /// The sphere a contouring shaver at `pose` smooths the cut rim in: its
   /// window's centre, and the window's half diagonal plus `shaverReach`.
   std::pair<Vector3, double> contourReach(const RigidPose& pose) const;
@@ -167,6 +173,8 @@ private:
   Blade scissorsStroke(const InstrumentCommand& before, const InstrumentCommand& now) const;
   Blade scalpelStroke(const InstrumentCommand& before, const InstrumentCommand& now) const;
   bool jawsJustClosed(const InstrumentCommand& command) const;
+  /// The removed pieces' volumes into `result`, and the operation counted.
+  InstrumentActionResult& takeRemoved(InstrumentActionResult& result);
 
   SurgicalInstrumentModel Model;
   InstrumentActionSettings Settings;

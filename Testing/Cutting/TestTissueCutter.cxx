@@ -519,6 +519,61 @@ TEST(TissueCutterSeparation, AHandedOverPieceIsABodyOfItsOwn)
   EXPECT_TRUE(own.step().ok);
 }
 
+// Piecewise removal (6.4.3): the collision triangles a shaver touches go
+// whole, with the visual triangles bound to them; the tissue opens along
+// their border without splitting anything, and the cut surface there closes
+// both the tissue and the removed piece.
+TEST(TissueCutterSeparation, RemovedTrianglesGoWithTheirVisualAndTheOpeningIsClosed)
+{
+  const BoundSheet& sheet = boundSheet();
+  CorotationalHexFem fem(sheet.model.simulation, softTissue(), smallSteps());
+  TissueCutterSettings settings;
+  settings.freePieces = FreePieceHandling::HandOver;
+  TissueCutter cutter(sheet.binding, sheet.model.simulation, &fem, settings);
+  const auto& x = sheet.model.collision.positions;
+  const Vector3 centre = boundingBoxOf(x).center();
+  std::vector<int> shaved;
+  double area = 0.0;
+  for (std::size_t t = 0; t < sheet.model.collision.triangleCount(); ++t)
+  {
+    const Triangle& c = sheet.model.collision.triangles[t];
+    if (((x[c[0]] + x[c[1]] + x[c[2]]) / 3.0 - centre).head<2>().norm() < 25.0)
+    {
+      shaved.push_back(static_cast<int>(t));
+      area += sheet.model.collision.triangleArea(t);
+    }
+  }
+  ASSERT_GT(shaved.size(), 3u);
+  EXPECT_THROW(cutter.removeTriangles({ -1 }), InvalidInputError);
+  ASSERT_EQ(cutter.activeTriangleCount(), sheet.model.collision.triangleCount());
+  const std::size_t visualBefore = cutter.visual().mesh().triangleCount();
+  const auto report = cutter.removeTriangles(shaved);
+  ASSERT_EQ(report.visualError, "");
+  ASSERT_TRUE(cutterIsConsistent(cutter, sheet.model.simulation));
+  EXPECT_TRUE(report.collision.splits.empty()) << "nothing is split";
+  EXPECT_EQ(cutter.activeTriangleCount(), sheet.model.collision.triangleCount() - shaved.size());
+  ASSERT_EQ(report.removedPieces, 1);
+  ASSERT_EQ(report.handedOver.size(), 1u);
+  const TissuePiece& piece = report.handedOver.front();
+  EXPECT_NEAR(piece.collisionArea, area, 1e-9 * area);
+  const MeshValidationReport closed = validateTriangleMesh(piece.visual, 0.0);
+  EXPECT_EQ(closed.borderEdges.count, 0u) << closed.toString();
+  EXPECT_EQ(closed.nonManifoldEdges.count, 0u) << closed.toString();
+  // The visual mesh only grew by the cut surface, and the tissue's part
+  // of it is still closed (cutterIsConsistent) around the hole.
+  EXPECT_GT(cutter.visual().cutSurfaceTriangleCount(), 0u);
+  EXPECT_EQ(cutter.visual().mesh().triangleCount(),
+    visualBefore + cutter.visual().cutSurfaceTriangleCount());
+  const std::vector<char> active = cutter.activeVisualTriangles();
+  EXPECT_LT(std::count(active.begin(), active.end(), 1),
+    static_cast<long>(cutter.visual().mesh().triangleCount()));
+  EXPECT_TRUE(fem.step().ok);
+  // Removing them again changes nothing.
+  const auto again = cutter.removeTriangles(shaved);
+  EXPECT_FALSE(again.changed());
+  EXPECT_EQ(again.removedPieces, 0);
+}
+
 TEST(TissueCutterSeparation, FragmentsBelowTheSizeAreRemovedWholeAndAttachedPiecesStay)
 {
   const BoundSheet& sheet = boundSheet();
