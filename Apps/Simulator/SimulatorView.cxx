@@ -240,6 +240,19 @@ void SimulatorView::update(const SceneSnapshot& snapshot)
         (RestNormals[i] + moved.normals[i] - ComputedRestNormals[i]).normalized();
       normals->SetTuple(static_cast<vtkIdType>(i), normal.data());
     }
+    if (!CutShading.triangles.empty())
+    {
+      // The cut surface is the cutter's own triangulation: its computed
+      // normals are smooth already.
+      CutShading.positions.assign(moved.positions.begin(), moved.positions.end());
+      CutShading.computeVertexNormals();
+      vtkDataArray* cutNormals = CutSurface->GetPointData()->GetNormals();
+      for (std::size_t i = 0; i < CutShading.normals.size(); ++i)
+      {
+        cutNormals->SetTuple(static_cast<vtkIdType>(i), CutShading.normals[i].data());
+      }
+      cutNormals->Modified();
+    }
     points->Modified();
     normals->Modified();
     Tissue->Modified();
@@ -303,7 +316,7 @@ void SimulatorView::rebuildTissue(const SceneTopology& topology)
 {
   // After a cut: the visual mesh's vertices, its triangles still in the
   // tissue (removed pieces are not drawn), split into the outer surface and
-  // the cut surfaces, both on one point set and one normal array.
+  // the cut surfaces, on one point set with a normal array each.
   const TriangleMesh& mesh = topology.mesh;
   const std::vector<char>& active = topology.active;
   const std::vector<VisualMaterial>* materials =
@@ -312,13 +325,10 @@ void SimulatorView::rebuildTissue(const SceneTopology& topology)
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(count);
-  vtkNew<vtkDoubleArray> normals;
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(count);
   vtkNew<vtkCellArray> outer;
   vtkNew<vtkCellArray> inner;
   Shading.triangles.clear();
-  std::vector<char> onCutSurface(mesh.vertexCount(), 0);
+  CutShading.triangles.clear();
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
   {
     if (!active[t])
@@ -326,17 +336,16 @@ void SimulatorView::rebuildTissue(const SceneTopology& topology)
       continue;
     }
     const Triangle& corners = mesh.triangles[t];
-    Shading.triangles.push_back(corners);
     const vtkIdType ids[3] = { corners[0], corners[1], corners[2] };
     const bool cut = materials && (*materials)[t] == VisualMaterial::CutSurface;
     (cut ? inner : outer)->InsertNextCell(3, ids);
-    for (int v : corners)
-    {
-      onCutSurface[v] = onCutSurface[v] || cut;
-    }
+    (cut ? CutShading : Shading).triangles.push_back(corners);
   }
   for (vtkPolyData* part : { Tissue.GetPointer(), CutSurface.GetPointer() })
   {
+    vtkNew<vtkDoubleArray> normals;
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(count);
     part->Initialize();
     part->SetPoints(points);
     part->GetPointData()->SetNormals(normals);
@@ -347,14 +356,6 @@ void SimulatorView::rebuildTissue(const SceneTopology& topology)
   Shading.computeVertexNormals();
   ComputedRestNormals = Shading.normals;
   RestNormals = mesh.normals.size() == mesh.vertexCount() ? mesh.normals : Shading.normals;
-  for (std::size_t v = 0; v < onCutSurface.size(); ++v)
-  {
-    // The cut surface's rest normals are its lips' (not across the cut).
-    if (onCutSurface[v])
-    {
-      RestNormals[v] = ComputedRestNormals[v];
-    }
-  }
   TopologyVersion = topology.version;
 }
 

@@ -53,9 +53,14 @@ private:
   vtkSmartPointer<vtkPolyData> Tissue = vtkSmartPointer<vtkPolyData>::New();
   vtkSmartPointer<vtkPolyData> CutSurface = vtkSmartPointer<vtkPolyData>::New();
   int TopologyVersion = -1;
-  TriangleMesh Shading; ///< the tissue's drawn triangles, for its normals each frame
+  /// The drawn triangles of the outer surface and of the cut surfaces, for
+  /// their normals each frame. Each surface has its own normal array: a lip
+  /// vertex both share is smooth on each side of the crease, not averaged
+  /// across it (that showed as light and dark streaks at the lips).
+  TriangleMesh Shading;
+  TriangleMesh CutShading;
   /// Per visual vertex: its rest normal (the mesh's) and the normal
-  /// computed from its rest positions.
+  /// computed from its rest positions on the outer surface.
   std::vector<Vector3> RestNormals;
   std::vector<Vector3> ComputedRestNormals;
   vtkSmartPointer<vtkActor> Instrument;
