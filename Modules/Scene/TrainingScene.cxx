@@ -297,11 +297,17 @@ bool TrainingScene::step()
   const RigidPose previousScope = ScopePose;
   Tool.moveTo(InstrumentState.pose, Scenario.timeStep);
   ScopePose = ScopeState.pose;
+  const int operationsBefore = Metrics.operations;
   if (Action)
   {
     operate(InstrumentState);
   }
+  const auto physics = std::chrono::steady_clock::now();
   const SolverResult result = Contacts.step();
+  if (Metrics.operations != operationsBefore)
+  {
+    LastCutTimes.physics = millisecondsSince(physics);
+  }
   if (!result.ok)
   {
     LastError = result.message;

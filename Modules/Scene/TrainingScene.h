@@ -51,6 +51,9 @@ struct CutStepTimes
   TissueCutReport cutter; ///< timings only (its meshes' lists cleared)
   double operation = 0.0;
   double scene = 0.0;
+  /// The contacts and FEM step that follows the cut in the same physics
+  /// step (the solver takes the changed hexahedra in it).
+  double physics = 0.0;
 };
 
 class THINTISSUESCENE_EXPORT TrainingScene

@@ -5,6 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 namespace thintissue
 {
@@ -22,6 +27,12 @@ struct MonitorReach
   double sphereRadius = 0.0;
   double sigma = 0.0;
   double rho = 0.0;
+  /// Distance from the region line beyond which the blend is negligible
+  /// (infinite when nothing is negligible): only the tube around the line
+  /// is searched, not the whole sphere.
+  double tubeRadius = std::numeric_limits<double>::infinity();
+  /// Half the length of the line segment searched (inside the sphere).
+  double reach() const { return std::min(sphereRadius, length); }
 };
 
 double spacingOf(const MonitorPointSet& monitors, std::size_t i)
@@ -66,6 +77,12 @@ std::vector<MonitorReach> reachesOf(const MonitorPointSet& monitors,
     const double spacing = spacingOf(monitors, i);
     r.rho =
       settings.blendWidth > 0.0 ? settings.blendWidth : (spacing > 0.0 ? spacing : 0.25 * r.length);
+    if (settings.negligibleBlend > 0.0 && settings.negligibleBlend < 1.0)
+    {
+      // exp(-d^2 / (2 rho^2)) >= negligible  <=>  d <= rho sqrt(-2 ln negligible);
+      // a hair wider so that rounding never drops a point the test keeps.
+      r.tubeRadius = r.rho * std::sqrt(-2.0 * std::log(settings.negligibleBlend)) * (1.0 + 1e-9);
+    }
   }
   return reaches;
 }
@@ -132,11 +149,61 @@ public:
         }
   }
 
-private:
+  /// Calls f(point) once for every point in the cells that meet the tube
+  /// of `radius` about segment [a, b]: balls at steps of one cell along the
+  /// segment, each cell tested by its centre's distance to the segment
+  /// against radius plus half its diagonal, and marked in `stamps` (one
+  /// entry per cell, this query's mark `mark`) so that it is seen once.
+  template <typename F>
+  void forEachNearSegment(const Vector3& a,
+    const Vector3& b,
+    double radius,
+    std::vector<unsigned>& stamps,
+    unsigned mark,
+    F&& f) const
+  {
+    const Vector3 axis = b - a;
+    const double axisSquared = axis.squaredNorm();
+    const double within = radius + 0.5 * std::sqrt(3.0) * Cell;
+    const int samples = std::max(1, static_cast<int>(std::ceil(std::sqrt(axisSquared) / Cell)));
+    for (int s = 0; s <= samples; ++s)
+    {
+      const Vector3 centre = a + axis * (static_cast<double>(s) / samples);
+      std::array<int, 3> low{}, high{};
+      for (int k = 0; k < 3; ++k)
+      {
+        // A point within `radius` of the segment is within radius + Cell/2
+        // of a sample.
+        const double reach = radius + 0.5 * Cell;
+        low[k] = std::max(0, static_cast<int>(std::floor((centre[k] - reach - Origin[k]) / Cell)));
+        high[k] = std::min(
+          Dimensions[k] - 1, static_cast<int>(std::floor((centre[k] + reach - Origin[k]) / Cell)));
+      }
+      for (int z = low[2]; z <= high[2]; ++z)
+        for (int y = low[1]; y <= high[1]; ++y)
+          for (int x = low[0]; x <= high[0]; ++x)
+          {
+            const int c = (z * Dimensions[1] + y) * Dimensions[0] + x;
+            if (stamps[c] == mark)
+              continue;
+            stamps[c] = mark;
+            const Vector3 middle = Origin + Cell * Vector3(x + 0.5, y + 0.5, z + 0.5);
+            const double t =
+              axisSquared > 0.0 ? std::clamp((middle - a).dot(axis) / axisSquared, 0.0, 1.0) : 0.0;
+            if ((a + t * axis - middle).squaredNorm() > within * within)
+              continue;
+            for (int e = Start[c]; e < Start[c + 1]; ++e)
+              f(Entries[e]);
+          }
+    }
+  }
+
   std::size_t cellCount() const
   {
     return static_cast<std::size_t>(Dimensions[0]) * Dimensions[1] * Dimensions[2];
   }
+
+private:
   int cellOf(const Vector3& p) const
   {
     std::array<int, 3> index{};
@@ -209,16 +276,18 @@ struct SurfaceNeighbours
 class AffectedPointSearch
 {
 public:
+  /// `neighbours` empty (no triangles): every point counts, connected or not.
   AffectedPointSearch(const std::vector<Vector3>& surface,
-    const std::vector<Triangle>& triangles,
+    const SurfaceNeighbours& neighbours,
     const PointGrid& grid,
     double negligibleBlend)
     : Surface(surface)
     , Grid(grid)
     , NegligibleBlend(negligibleBlend)
-    , Connected(!triangles.empty())
-    , Neighbours(Connected ? surface.size() : 0, triangles)
+    , Connected(!neighbours.used.empty())
+    , Neighbours(neighbours)
     , Mark(Connected ? surface.size() : 0, 0)
+    , CellStamps(grid.cellCount(), 0u)
   {
   }
 
@@ -226,12 +295,35 @@ public:
   {
     const std::size_t first = raw.size();
     Distance.clear();
-    Grid.forEachNear(
-      r.origin, std::min(r.sphereRadius, r.length), [&](int j) { consider(monitor, r, j, raw); });
+    const auto visit = [&](int j) { consider(monitor, r, j, raw); };
+    if (std::isfinite(r.tubeRadius))
+    {
+      if (++CellMark == 0) // wrapped: no cell may keep an old mark
+      {
+        std::fill(CellStamps.begin(), CellStamps.end(), 0u);
+        CellMark = 1;
+      }
+      Grid.forEachNearSegment(r.origin - r.reach() * r.direction,
+        r.origin + r.reach() * r.direction,
+        r.tubeRadius,
+        CellStamps,
+        CellMark,
+        visit);
+    }
+    else
+    {
+      Grid.forEachNear(r.origin, r.reach(), visit);
+    }
     if (Connected)
     {
       keepConnected(raw, first);
     }
+    // In point order, whatever the grid's cells: the entries do not depend
+    // on how the search was laid out (after keepConnected, whose distances
+    // follow the visiting order).
+    std::sort(raw.begin() + static_cast<std::ptrdiff_t>(first),
+      raw.end(),
+      [](const RawEntry& a, const RawEntry& b) { return a.point < b.point; });
   }
 
 private:
@@ -305,10 +397,12 @@ private:
   const PointGrid& Grid;
   double NegligibleBlend;
   bool Connected;
-  SurfaceNeighbours Neighbours;
+  const SurfaceNeighbours& Neighbours;
   std::vector<int> Mark;
   std::vector<int> Queue;
   std::vector<double> Distance;
+  std::vector<unsigned> CellStamps; ///< per grid cell: the last query that saw it
+  unsigned CellMark = 0;
 };
 
 } // namespace
@@ -316,26 +410,100 @@ private:
 namespace
 {
 
-/// The grid over the surface points any of `reaches` can affect.
+/// The grid over the surface points any of `reaches` can affect. Its cells
+/// are as wide as the widest tube (the searches follow the region lines),
+/// or as the largest reach when a tube is unbounded.
 PointGrid gridFor(const std::vector<MonitorReach>& reaches, const std::vector<Vector3>& surface)
 {
   BoundingBox box;
   double largest = 0.0;
+  double widestTube = 0.0;
   for (const MonitorReach& r : reaches)
   {
     box.extend(r.origin);
-    largest = std::max(largest, std::min(r.sphereRadius, r.length));
+    largest = std::max(largest, r.reach());
+    widestTube = std::max(widestTube, r.tubeRadius);
   }
   box.min().array() -= largest;
   box.max().array() += largest;
-  return PointGrid(surface, box, largest > 0.0 ? largest : 1.0);
+  double cell = largest > 0.0 ? largest : 1.0;
+  if (std::isfinite(widestTube) && widestTube > 0.0)
+  {
+    // At most about 2^16 cells: the grid and the searches' cell marks are
+    // made for every refresh after a cut.
+    const Vector3 sizes = box.sizes();
+    const double coarsest = std::cbrt(sizes.prod() / 65536.0);
+    cell = std::min(cell, std::max({ widestTube, coarsest, sizes.maxCoeff() / 256.0 }));
+  }
+  return PointGrid(surface, box, cell);
 }
 
+/// Whether a change inside `box` can change what monitor r affects: the box
+/// meets its sphere and, when bounded, the tube about its line (the segment
+/// tested against the box grown by the tube's radius: conservative).
 bool reachMeets(const MonitorReach& r, const BoundingBox& box)
 {
-  const double radius = std::min(r.sphereRadius, r.length);
+  if (box.isEmpty())
+    return false;
+  const double radius = r.reach();
   const Vector3 nearest = r.origin.cwiseMax(box.min()).cwiseMin(box.max());
-  return !box.isEmpty() && (nearest - r.origin).squaredNorm() <= radius * radius;
+  if ((nearest - r.origin).squaredNorm() > radius * radius)
+    return false;
+  if (!std::isfinite(r.tubeRadius))
+    return true;
+  // Slab test of segment origin + t direction, |t| <= reach.
+  double low = -radius, high = radius;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double lo = box.min()[k] - r.tubeRadius, hi = box.max()[k] + r.tubeRadius;
+    const double d = r.direction[k];
+    if (std::abs(d) < 1e-300)
+    {
+      if (r.origin[k] < lo || r.origin[k] > hi)
+        return false;
+      continue;
+    }
+    double t0 = (lo - r.origin[k]) / d, t1 = (hi - r.origin[k]) / d;
+    if (t0 > t1)
+      std::swap(t0, t1);
+    low = std::max(low, t0);
+    high = std::min(high, t1);
+    if (low > high)
+      return false;
+  }
+  return true;
+}
+
+} // namespace
+
+namespace
+{
+
+/// find() for each monitor listed, in parallel (a search, with its
+/// scratch, per thread; each monitor's entries depend on it alone).
+std::vector<std::vector<RawEntry>> findAffected(const std::vector<MonitorReach>& reaches,
+  const std::vector<int>& monitors,
+  const std::vector<Vector3>& surfaceRest,
+  const std::vector<Triangle>& triangles,
+  double negligibleBlend)
+{
+  std::vector<std::vector<RawEntry>> found(monitors.size());
+  if (monitors.empty())
+    return found;
+  const PointGrid grid = gridFor(reaches, surfaceRest);
+  // The neighbours once, shared; the searches' scratch per thread.
+  const SurfaceNeighbours neighbours(triangles.empty() ? 0 : surfaceRest.size(), triangles);
+  tbb::enumerable_thread_specific<AffectedPointSearch> searches(
+    [&] { return AffectedPointSearch(surfaceRest, neighbours, grid, negligibleBlend); });
+  // Grains of 8: a search costs some microseconds.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, monitors.size(), 8),
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
+      AffectedPointSearch& search = searches.local();
+      for (std::size_t k = range.begin(); k != range.end(); ++k)
+        search.find(monitors[k], reaches[monitors[k]], found[k]);
+    });
+  return found;
 }
 
 } // namespace
@@ -346,24 +514,8 @@ WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
   const WrinkleInfluenceSettings& settings)
   : Settings(settings)
 {
-  const std::vector<MonitorReach> reaches = reachesOf(monitors, settings);
-  const PointGrid grid = gridFor(reaches, surfaceRest);
-  std::vector<RawEntry> raw;
-  AffectedPointSearch search(surfaceRest, triangles, grid, settings.negligibleBlend);
-  std::vector<int> counts(monitors.size(), 0);
-  for (std::size_t i = 0; i < reaches.size(); ++i)
-  {
-    raw.clear();
-    search.find(static_cast<int>(i), reaches[i], raw);
-    counts[i] = static_cast<int>(raw.size());
-    for (const RawEntry& e : raw)
-    {
-      Points.push_back(e.point);
-      Blends.push_back(e.blend);
-      Attenuations.push_back(e.attenuation);
-    }
-  }
-  normalise(counts, surfaceRest.size());
+  // Every monitor point searched: a refresh with nothing to keep.
+  refresh(monitors, std::vector<int>(monitors.size(), -1), surfaceRest, triangles, BoundingBox());
 }
 
 void WrinkleInfluence::refresh(const MonitorPointSet& monitors,
@@ -373,35 +525,40 @@ void WrinkleInfluence::refresh(const MonitorPointSet& monitors,
   const BoundingBox& changed)
 {
   const std::vector<MonitorReach> reaches = reachesOf(monitors, Settings);
-  const PointGrid grid = gridFor(reaches, surfaceRest);
-  AffectedPointSearch search(surfaceRest, triangles, grid, Settings.negligibleBlend);
+  std::vector<int> searched;
+  for (std::size_t i = 0; i < reaches.size(); ++i)
+  {
+    if (previous[i] < 0 || reachMeets(reaches[i], changed))
+      searched.push_back(static_cast<int>(i));
+  }
+  const std::vector<std::vector<RawEntry>> found =
+    findAffected(reaches, searched, surfaceRest, triangles, Settings.negligibleBlend);
   std::vector<int> points;
   std::vector<double> blends, attenuations;
   std::vector<int> counts(monitors.size(), 0);
-  std::vector<RawEntry> raw;
+  std::size_t next = 0; // in `searched` and `found`
   for (std::size_t i = 0; i < reaches.size(); ++i)
   {
-    const int old = previous[i];
-    if (old >= 0 && !reachMeets(reaches[i], changed))
+    if (next < searched.size() && searched[next] == static_cast<int>(i))
     {
-      // Far from the cut: the same points, blends and attenuations.
-      counts[i] = Offsets[old + 1] - Offsets[old];
-      points.insert(points.end(), Points.begin() + Offsets[old], Points.begin() + Offsets[old + 1]);
-      blends.insert(blends.end(), Blends.begin() + Offsets[old], Blends.begin() + Offsets[old + 1]);
-      attenuations.insert(attenuations.end(),
-        Attenuations.begin() + Offsets[old],
-        Attenuations.begin() + Offsets[old + 1]);
+      const std::vector<RawEntry>& raw = found[next++];
+      counts[i] = static_cast<int>(raw.size());
+      for (const RawEntry& e : raw)
+      {
+        points.push_back(e.point);
+        blends.push_back(e.blend);
+        attenuations.push_back(e.attenuation);
+      }
       continue;
     }
-    raw.clear();
-    search.find(static_cast<int>(i), reaches[i], raw);
-    counts[i] = static_cast<int>(raw.size());
-    for (const RawEntry& e : raw)
-    {
-      points.push_back(e.point);
-      blends.push_back(e.blend);
-      attenuations.push_back(e.attenuation);
-    }
+    // Far from the cut: the same points, blends and attenuations.
+    const int old = previous[i];
+    counts[i] = Offsets[old + 1] - Offsets[old];
+    points.insert(points.end(), Points.begin() + Offsets[old], Points.begin() + Offsets[old + 1]);
+    blends.insert(blends.end(), Blends.begin() + Offsets[old], Blends.begin() + Offsets[old + 1]);
+    attenuations.insert(attenuations.end(),
+      Attenuations.begin() + Offsets[old],
+      Attenuations.begin() + Offsets[old + 1]);
   }
   Points = std::move(points);
   Blends = std::move(blends);

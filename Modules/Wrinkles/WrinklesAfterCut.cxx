@@ -139,10 +139,25 @@ std::vector<char> WrinkleGenerator::placeAfterCut(const TissueCutter& cutter,
   const HexahedralMesh& mesh = cutter.simulation();
   Embedding.updateHexahedra(mesh, report.simulation.renodedHexahedra);
   std::vector<char> keep(Monitors.size(), 1);
+  // Per hexahedron (-1 not known yet): whether one of its collision
+  // triangles is out of the tissue. A point in an uncopied hexahedron all
+  // of whose triangles remain keeps its place; only removals can drop it.
+  std::vector<signed char> losesTriangles(mesh.hexahedra.size(), -1);
+  const auto hasInactiveTriangle = [&](int h)
+  {
+    if (losesTriangles[h] < 0)
+    {
+      const std::vector<int>& held = cutter.branches().trianglesOf(h);
+      losesTriangles[h] =
+        std::any_of(held.begin(), held.end(), [&](int t) { return !cutter.isActive(t); });
+    }
+    return losesTriangles[h] != 0;
+  };
   for (std::size_t i = 0; i < Monitors.size(); ++i)
   {
     const int h = Embedding.hexahedron(i);
-    if (cutter.branches().copiesOf(h).size() < 2 && report.removedPieces == 0)
+    if (cutter.branches().copiesOf(h).size() < 2 &&
+        (report.removedPieces == 0 || !hasInactiveTriangle(h)))
     {
       continue;
     }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -139,6 +140,51 @@ TEST(MonitorCurves, BadDataIsRefusedWithItsName)
     std::string::npos);
   EXPECT_NE(messageOf([&] { resampleMonitorCurves({}, 0.1, "knee.json"); }).find("no monitor"),
     std::string::npos);
+}
+
+/// The search follows each region line through a grid (a tube about the
+/// line, where the blend is not negligible): it must find exactly the points
+/// a scan of every surface point keeps (4.3's sphere and line tests, the
+/// negligible blend), for narrow and wide blends and a sphere that cuts the
+/// line short.
+TEST(WrinkleInfluence, TheSearchFindsWhatAScanOfEveryPointKeeps)
+{
+  const MeniscusWrinkleCase c = meniscusWrinkleCase();
+  const auto& surface = c.model.visual.positions;
+  for (const auto& [blendWidth, sphereRadius] :
+    { std::pair{ 0.2, 0.0 }, std::pair{ 1.5, 0.0 }, std::pair{ 0.5, 1.0 } })
+  {
+    WrinkleInfluenceSettings settings;
+    settings.blendWidth = blendWidth;
+    settings.sphereRadius = sphereRadius;
+    const WrinkleInfluence influence(c.monitors, surface, {}, settings);
+    std::size_t entries = 0;
+    for (std::size_t i = 0; i < c.monitors.size(); ++i)
+    {
+      const Vector3& m = c.monitors.monitorPoints[i];
+      const Vector3 line = c.monitors.regionPoints[i] - m;
+      const double length = line.norm();
+      const double sphere = sphereRadius > 0.0 ? sphereRadius : length;
+      std::vector<int> scanned;
+      for (std::size_t j = 0; j < surface.size(); ++j)
+      {
+        const Vector3 v = surface[j] - m;
+        const double along = v.dot(line) / length;
+        const double across2 = std::max(0.0, v.squaredNorm() - along * along);
+        if (std::abs(along) < length && v.squaredNorm() <= sphere * sphere &&
+            std::exp(-across2 / (2.0 * blendWidth * blendWidth)) >= settings.negligibleBlend)
+          scanned.push_back(static_cast<int>(j));
+      }
+      std::vector<int> found;
+      for (int e = influence.affectedBegin(i); e < influence.affectedEnd(i); ++e)
+        found.push_back(influence.point(e));
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(found, scanned) << "monitor point " << i << ", blend width " << blendWidth
+                                << ", sphere " << sphereRadius;
+      entries += found.size();
+    }
+    EXPECT_GT(entries, c.monitors.size()); // not an empty case
+  }
 }
 
 TEST(WrinkleInfluence, AffectedPointsLieAlongTheRegionLinesNearTheInnerRim)
