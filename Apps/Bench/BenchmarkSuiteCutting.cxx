@@ -29,6 +29,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 
 namespace
 {
@@ -304,6 +305,63 @@ void punchAndReport(int repetitions, BenchmarkReporter& reporter)
   }
 }
 
+/// Thesis 6.4.3: shaving by piecewise removal. The running shaver's
+/// window (a ball of 1.7 mm, the small shaver's) moved along the
+/// meniscus's inner border 0.5 mm a pass; each pass removes the active
+/// collision triangles whose centroid it holds (TissueCutter::
+/// removeTriangles, as the simulator's shaver does): the cost of a pass
+/// that removes something (issue target 0.5 ms), by stage.
+void shaveAndReport(int repetitions, BenchmarkReporter& reporter)
+{
+  const MeniscusModel meniscus = makeMeniscus();
+  const VisualCollisionBinding binding = bindVisualToCollision(meniscus.visual, meniscus.collision);
+  TissueCutterSettings settings;
+  settings.freePieces = FreePieceHandling::Drop;
+  const std::vector<Vector3>& border = meniscus.monitorCurves.front().monitorPoints;
+  std::vector<double> whole, visual, embedding, removal;
+  std::size_t removedTriangles = 0;
+  for (int r = 0; r < std::max(1, repetitions / 7); ++r)
+  {
+    CorotationalHexFem fem(meniscus.simulation, softTissue());
+    TissueCutter cutter(binding, meniscus.simulation, &fem, settings);
+    Vector3 last = border[border.size() / 3];
+    for (std::size_t i = border.size() / 3; i < 2 * border.size() / 3; ++i)
+    {
+      if (i > border.size() / 3 && (border[i] - last).norm() < 0.5)
+        continue;
+      last = border[i];
+      const auto& rest = cutter.collision().restPositions();
+      const auto& triangles = cutter.collision().triangles();
+      std::vector<int> held;
+      for (std::size_t t = 0; t < triangles.size(); ++t)
+      {
+        const Triangle& c = triangles[t];
+        const Vector3 centroid = (rest[c[0]] + rest[c[1]] + rest[c[2]]) / 3.0;
+        if (cutter.isActive(static_cast<int>(t)) && (centroid - last).norm() <= 1.7)
+          held.push_back(static_cast<int>(t));
+      }
+      if (held.empty())
+        continue;
+      const TissueCutReport report = cutter.removeTriangles(held);
+      removedTriangles += held.size();
+      whole.push_back(report.totalMilliseconds);
+      visual.push_back(report.visualMilliseconds);
+      embedding.push_back(report.embeddingMilliseconds + report.visualEmbeddingMilliseconds);
+      removal.push_back(report.removalMilliseconds);
+    }
+  }
+  if (whole.empty())
+    throw std::runtime_error("shaving bench: the window held no triangle");
+  const std::string what = "medial meniscus, shaving pass along the inner border (" +
+                           std::to_string(removedTriangles / whole.size()) +
+                           " collision triangles a pass)";
+  reporter.report(what, "visual opening and cut surface", median(visual), "ms");
+  reporter.report(what, "embedding updates", median(embedding), "ms");
+  reporter.report(what, "piece removal", median(removal), "ms");
+  reporter.report(what, "whole pass", median(whole), "ms");
+  reporter.report(what, "passes", static_cast<double>(whole.size()), "count");
+}
+
 } // namespace
 
 THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
@@ -362,6 +420,7 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
     "thin sheet, collision model 1", sheet.collision, sheet.simulation, reporter);
   contourAndReport(repetitions, reporter);
   punchAndReport(repetitions, reporter);
+  shaveAndReport(repetitions, reporter);
   if (context.quick)
   {
     return;
