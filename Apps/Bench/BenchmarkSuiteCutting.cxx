@@ -330,16 +330,7 @@ void shaveAndReport(int repetitions, BenchmarkReporter& reporter)
       if (i > border.size() / 3 && (border[i] - last).norm() < 0.5)
         continue;
       last = border[i];
-      const auto& rest = cutter.collision().restPositions();
-      const auto& triangles = cutter.collision().triangles();
-      std::vector<int> held;
-      for (std::size_t t = 0; t < triangles.size(); ++t)
-      {
-        const Triangle& c = triangles[t];
-        const Vector3 centroid = (rest[c[0]] + rest[c[1]] + rest[c[2]]) / 3.0;
-        if (cutter.isActive(static_cast<int>(t)) && (centroid - last).norm() <= 1.7)
-          held.push_back(static_cast<int>(t));
-      }
+      const std::vector<int> held = cutter.activeTrianglesWithin(last, 1.7);
       if (held.empty())
         continue;
       const TissueCutReport report = cutter.removeTriangles(held);

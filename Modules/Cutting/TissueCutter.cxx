@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
+#include <string>
 
 namespace thintissue
 {
@@ -514,6 +516,25 @@ bool TissueCutter::followCollisionCut(TissueCutReport& report)
   report.reembeddedVisualVertices = reembedVisual(report);
   report.visualEmbeddingMilliseconds = millisecondsSince(reembedStart);
   return true;
+}
+
+std::vector<int> TissueCutter::activeTrianglesWithin(const Vector3& centre, double radius) const
+{
+  if (!centre.allFinite() || !(radius > 0.0) || !std::isfinite(radius))
+    throw InvalidInputError(
+      "shaving: the window needs a finite centre and a positive radius (got " +
+      std::to_string(radius) + ")");
+  const auto& rest = Collision.restPositions();
+  const auto& triangles = Collision.triangles();
+  std::vector<int> held;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+  {
+    const Triangle& c = triangles[t];
+    const Vector3 centroid = (rest[c[0]] + rest[c[1]] + rest[c[2]]) / 3.0;
+    if (Active[t] && (centroid - centre).squaredNorm() <= radius * radius)
+      held.push_back(static_cast<int>(t));
+  }
+  return held;
 }
 
 TissueCutReport TissueCutter::removeTriangles(const std::vector<int>& triangles)

@@ -144,6 +144,12 @@ public:
   /// costs what lies around the border. Throws InvalidInputError, the
   /// tissue untouched, on an index that is no triangle.
   TissueCutReport removeTriangles(const std::vector<int>& triangles);
+  /// The collision triangles still in the tissue whose centroid (rest
+  /// positions) lies within `radius` of `centre`: what a shaver's window
+  /// held there takes (6.4.3), for removeTriangles. Throws
+  /// InvalidInputError on a radius that is not positive or a centre that is
+  /// not finite.
+  std::vector<int> activeTrianglesWithin(const Vector3& centre, double radius) const;
 
   /// The settings of the cuts to come, changed between cuts (a settings
   /// panel): snapping, free-piece handling, fragment size and the visual

@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <utility>
 
 vtkStandardNewMacro(vtkThinTissueCutFilter);
 
@@ -38,6 +39,9 @@ struct vtkThinTissueCutFilter::Internals
     double strength;
   };
   std::vector<ContourPass> PendingPasses;
+  /// Shaving passes asked for since the last update: the window's centre
+  /// and radius.
+  std::vector<std::pair<thintissue::Vector3, double>> PendingShavingPasses;
   int ContouredVertices = 0; ///< moved by the last update's passes
 };
 
@@ -79,6 +83,37 @@ void vtkThinTissueCutFilter::AddContourPass(double centreX,
 {
   this->Tissue->PendingPasses.push_back({ { centreX, centreY, centreZ }, radius, strength });
   this->Modified();
+}
+
+void vtkThinTissueCutFilter::AddShavingPass(double centreX,
+  double centreY,
+  double centreZ,
+  double radius)
+{
+  this->Tissue->PendingShavingPasses.emplace_back(
+    thintissue::Vector3(centreX, centreY, centreZ), radius);
+  this->Modified();
+}
+
+void vtkThinTissueCutFilter::ApplyShavingPasses()
+{
+  Internals& tissue = *this->Tissue;
+  this->LastShavedTriangles = 0;
+  std::vector<std::pair<thintissue::Vector3, double>> passes;
+  passes.swap(tissue.PendingShavingPasses); // applied once, even if one fails
+  for (const auto& [centre, radius] : passes)
+  {
+    const std::vector<int> held = tissue.Cutter->activeTrianglesWithin(centre, radius);
+    if (held.empty())
+      continue;
+    const thintissue::TissueCutReport report = tissue.Cutter->removeTriangles(held);
+    if (!report.visualError.empty())
+    {
+      vtkWarningMacro(<< report.visualError);
+    }
+    this->LastShavedTriangles += static_cast<int>(held.size());
+    ++this->NumberOfShavingPasses;
+  }
 }
 
 void vtkThinTissueCutFilter::ApplyContourPasses()
@@ -267,6 +302,7 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
       this->LastCutMilliseconds = 0.0;
       this->LastCutChangedTissue = 0;
       this->NumberOfContourPasses = 0;
+      this->NumberOfShavingPasses = 0;
     }
     if (blade && blade->GetMTime() > tissue.LastBlade && blade->GetNumberOfCells() > 0)
     {
@@ -290,6 +326,7 @@ int vtkThinTissueCutFilter::RequestData(vtkInformation*,
         report.visual.changedTriangles.size(),
         report.totalMilliseconds);
     }
+    this->ApplyShavingPasses();
     this->ApplyContourPasses();
   }
   catch (const std::exception& error)
@@ -330,6 +367,8 @@ void vtkThinTissueCutFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "JaggedWavelength: " << this->JaggedWavelength << "\n";
   os << indent << "JaggedSeed: " << this->JaggedSeed << "\n";
   os << indent << "NumberOfContourPasses: " << this->NumberOfContourPasses << "\n";
+  os << indent << "NumberOfShavingPasses: " << this->NumberOfShavingPasses << "\n";
+  os << indent << "LastShavedTriangles: " << this->LastShavedTriangles << "\n";
   os << indent << "RimRoughness: " << this->RimRoughness << "\n";
   os << indent << "RimRoughnessMaximum: " << this->RimRoughnessMaximum << "\n";
   os << indent << "NumberOfCuts: " << this->NumberOfCuts << "\n";

@@ -34,6 +34,13 @@
  * and "ContouredVertices" (cut-surface vertices the last update's passes
  * moved).
  *
+ * Shaving (6.4.3): AddShavingPass() asks for a pass of a running shaver
+ * whose window is a ball: the next update removes the collision triangles
+ * still in the tissue whose centroid (rest) it holds, with the visual
+ * triangles bound to them, and closes the opening with cut surface
+ * (TissueCutter::removeTriangles); passes apply after the blade and before
+ * the contouring passes.
+ *
  * Output port 0: the visual surface with its cut surfaces (rest
  * positions), with the binding arrays of the input (the binding after the
  * cuts) and the cell array "Material" (unsigned char: 0 the tissue's
@@ -148,6 +155,19 @@ public:
     double radius,
     double strength);
 
+  /// Asks for a shaving pass at the next update: the collision triangles
+  /// whose centroid lies within `radius` of `centre` (rest) are removed
+  /// (TissueCutter::removeTriangles). Bad values are reported by that
+  /// update. Marks the filter modified.
+  void AddShavingPass(double centreX, double centreY, double centreZ, double radius);
+
+  ///@{
+  /// Shaving passes that removed something since the tissue was built, and
+  /// the collision triangles the last update's passes removed.
+  vtkGetMacro(NumberOfShavingPasses, int);
+  vtkGetMacro(LastShavedTriangles, int);
+  ///@}
+
   ///@{
   /// The rim's roughness after the last update (as the field data), and
   /// the contouring passes applied since the tissue was built.
@@ -195,6 +215,8 @@ protected:
   double RimRoughness = 0.0;
   double RimRoughnessMaximum = 0.0;
   int NumberOfContourPasses = 0;
+  int NumberOfShavingPasses = 0;
+  int LastShavedTriangles = 0;
   int NumberOfCuts = 0;
   double LastCutMilliseconds = 0.0;
   vtkTypeBool LastCutChangedTissue = 0;
@@ -207,6 +229,7 @@ private:
   struct Internals;
   std::unique_ptr<Internals> Tissue;
   void ApplyContourPasses();
+  void ApplyShavingPasses();
   void WriteRoughness(vtkPolyData* output);
 };
 

@@ -2,8 +2,9 @@
 the meniscus's inner border, made by vtkInstrumentBladeSource and given to
 vtkThinTissueCutFilter with free pieces dropped, takes a piece out; with a
 jagged cut surface the bitten rim is rough (field data RimRoughness) and
-contouring passes at the bite smooth it, removing nothing (6.4.4); the
-probe hook makes no blade."""
+contouring passes at the bite smooth it, removing nothing (6.4.4); shaving
+passes remove the collision triangles the window holds and the cut surface
+closes the opening (6.4.3); the probe hook makes no blade."""
 import math
 import unittest
 
@@ -142,6 +143,51 @@ class OperationsTest(unittest.TestCase):
         self.cut.GlobalWarningDisplayOff()
         self.cut.Update()
         self.assertIn("radius", self.cut.GetLastErrorMessage())
+
+    def open_edges(self):
+        """Boundary and non-manifold edges of the visual output."""
+        edges = vtk.vtkFeatureEdges()
+        edges.SetInputData(self.cut.GetVisualOutput())
+        edges.FeatureEdgesOff()
+        edges.ManifoldEdgesOff()
+        edges.BoundaryEdgesOn()
+        edges.NonManifoldEdgesOn()
+        edges.Update()
+        return edges.GetOutput().GetNumberOfCells()
+
+    def test_shaving_passes_remove_what_the_window_holds_and_close_the_surface(self):
+        self.cut.Update()  # the tissue, uncut
+        self.assertEqual(self.open_edges(), 0)
+        area = collision_area(self.cut.GetCollisionOutput())
+        monitors = self.meniscus.GetMonitorPointsOutput()
+        count = monitors.GetNumberOfPoints()
+        # A running shaver along the inner border: five windows 0.5 mm apart.
+        first = count // 2
+        for k in range(5):
+            p = monitors.GetPoint(first + k)
+            self.cut.AddShavingPass(p[0], p[1], p[2], 1.7)
+        self.cut.Update()
+        self.assertEqual(self.cut.GetLastErrorMessage(), "")
+        shaved = self.cut.GetLastShavedTriangles()
+        self.assertGreater(shaved, 0)
+        self.assertGreater(self.cut.GetNumberOfShavingPasses(), 0)
+        self.assertLess(collision_area(self.cut.GetCollisionOutput()), area - 0.5)
+        self.assertEqual(self.open_edges(), 0)  # the cut surface closes it
+        material = self.cut.GetVisualOutput().GetCellData().GetArray("Material")
+        self.assertGreater(material.GetRange()[1], 0)  # cut-surface triangles
+        # The same windows again hold nothing: nothing more goes.
+        cells = self.cut.GetVisualOutput().GetNumberOfCells()
+        p = monitors.GetPoint(first)
+        self.cut.AddShavingPass(p[0], p[1], p[2], 1.7)
+        self.cut.Update()
+        self.assertEqual(self.cut.GetLastShavedTriangles(), 0)
+        self.assertEqual(self.cut.GetVisualOutput().GetNumberOfCells(), cells)
+        # A window of no size is reported; the tissue stays as it was.
+        self.cut.AddShavingPass(p[0], p[1], p[2], -1.0)
+        self.cut.GlobalWarningDisplayOff()
+        self.cut.Update()
+        self.assertIn("radius", self.cut.GetLastErrorMessage())
+        self.assertEqual(self.cut.GetVisualOutput().GetNumberOfCells(), cells)
 
     def test_the_probe_makes_no_blade(self):
         self.blade.SetInstrument(0)
