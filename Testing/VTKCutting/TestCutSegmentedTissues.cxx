@@ -3,13 +3,18 @@
 // spacing, blurred, noisy, iso-surfaced: rough, stair-stepped, thin-rimmed),
 // prepared automatically, then cut by random blade sweeps with every cutting
 // invariant checked after each cut; and the MRI-segmented menisci of
-// ../shared/data in metres when the data is present.
+// ../shared/data in metres when the data is present. The same prepared
+// tissues also take random surgical operations (thesis 6.4: punch bites,
+// shaver passes, contouring; RandomOperations of Testing/Operations) placed
+// over the thin border curves derived from their collision mesh.
 #include "vtkSimulatedSegmentationFilter.h"
 
+#include "AutomaticMonitorCurves.h"
 #include "MeniscusModel.h"
 #include "MeshImport.h"
 #include "MeshRepair.h"
 #include "MeshValidation.h"
+#include "RandomOperations.h"
 #include "RandomSweeps.h"
 #include "ThinTissueTestSupport.h"
 #include "TissueBundle.h"
@@ -22,6 +27,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -70,6 +78,54 @@ void sweepPrepared(const TissueBundle& bundle, const std::string& name, unsigned
   EXPECT_EQ(sweeps.Sweeps, 20 * episodes * sweepScale()) << name;
 }
 
+/// Random operations on the prepared tissue (in mm): punch bites and
+/// shaver passes over its thin border (the curves the wrinkles would get,
+/// AutomaticMonitorCurves), contouring on its cut rim, every invariant after
+/// each; some bites must remove and some passes smooth.
+void operatePrepared(const TissueBundle& bundle, const std::string& name, unsigned seed)
+{
+  using namespace thintissue::operations_test;
+  std::vector<MonitorCurve> curves;
+  for (const WrinkleDataCurve& derived :
+    deriveWrinkleDataCurves(bundle.collision, bundle.binding.collisionRadii))
+  {
+    MonitorCurve curve;
+    curve.name = derived.name;
+    curve.monitorPoints = derived.monitorPoints;
+    curve.regionPoints = derived.regionPoints;
+    curve.thickness = derived.thickness;
+    curves.push_back(std::move(curve));
+  }
+  const OperatedTissue tissue{ name, bundle.binding, bundle.simulation, curves };
+  RandomOperations operations(tissue, seed);
+  operations.run(4 * soakScale(), 50);
+  EXPECT_EQ(operations.Operations, 200 * soakScale()) << name;
+  EXPECT_GT(operations.Removals, 5) << name;
+  EXPECT_GT(operations.Contours, 5) << name;
+}
+
+/// The test bed's meniscus prepared as the sweeps prepare it.
+TissueBundle preparedSegmentedMeniscus(MeniscusTearType tear)
+{
+  TissuePreparationSettings settings;
+  settings.collision.vertexCount = 105;
+  settings.hexahedronCount = 42;
+  return prepareTissue(segmentedMeniscus(tear, 7u + static_cast<unsigned>(tear)), settings);
+}
+
+/// An MRI meniscus of ../shared/data (metres) in millimetres, as the
+/// simulator takes it, prepared as ThinTissuePrepare does.
+TissueBundle preparedMriMeniscus(const std::string& file)
+{
+  TriangleMesh mesh = readTriangleMesh(file);
+  for (Vector3& x : mesh.positions)
+    x *= 1000.0;
+  const PreparedTissues prepared = prepareTissues(mesh, {});
+  if (prepared.tissues.size() != 1u)
+    throw std::runtime_error(file + ": " + std::to_string(prepared.tissues.size()) + " tissues");
+  return prepared.tissues.front();
+}
+
 class CutSegmentedMeniscus : public ::testing::TestWithParam<MeniscusTearType>
 {
 };
@@ -84,6 +140,12 @@ TEST_P(CutSegmentedMeniscus, RandomSweepsKeepEveryInvariant)
   const TissueBundle bundle =
     prepareTissue(segmentedMeniscus(GetParam(), 7u + static_cast<unsigned>(GetParam())), settings);
   sweepPrepared(bundle, "segmented " + bundle.visual.name, 31u, 10);
+}
+
+TEST_P(CutSegmentedMeniscus, RandomOperationsKeepEveryInvariant)
+{
+  const TissueBundle bundle = preparedSegmentedMeniscus(GetParam());
+  operatePrepared(bundle, "segmented " + bundle.visual.name, 1901u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Tears,
@@ -112,5 +174,18 @@ TEST(CutMriMeniscus, RandomSweepsKeepEveryInvariant)
     const PreparedTissues prepared = prepareTissues(readTriangleMesh(file), {});
     ASSERT_EQ(prepared.tissues.size(), 1u) << file;
     sweepPrepared(prepared.tissues.front(), file, 57u, 10);
+  }
+}
+
+// The MRI menisci in millimetres under random operations.
+TEST(CutMriMeniscus, RandomOperationsKeepEveryInvariant)
+{
+  const std::string directory = thintissue::testing::sharedDataDirectory() + "/knee-smith2019";
+  if (thintissue::testing::sharedDataDirectory().empty() || !std::filesystem::exists(directory))
+    GTEST_SKIP() << "no shared data (knee-smith2019)";
+  for (const char* side : { "medial", "lateral" })
+  {
+    const std::string file = directory + "/smith2019-R-" + side + "-meniscus.stl";
+    operatePrepared(preparedMriMeniscus(file), file, 1911u);
   }
 }
