@@ -2,7 +2,9 @@
 // after the operations of partial meniscectomy, seen from above its open
 // side. Left: five punch bites along the inner border (jagged cut surface,
 // the rim uneven where bites overlap); right: the large shaver run along the
-// border in six bites (the trench it leaves, closed by cut surface). Tissue
+// border in six passes, each removing the collision triangles its window
+// holds (6.4.3: the notch of whole triangles it leaves, closed by cut
+// surface). Tissue
 // pink, cut surface dark red, removed pieces gone.
 #include "OperationSceneHelpers.h"
 
