@@ -935,6 +935,46 @@ double halfThicknessAt(const ProjectedSurface& surface, const Vector2& q, double
   return 0.5 * (top - bottom);
 }
 
+/// A point of the outline moved `inward` (unit, toward the tissue) until
+/// the local half thickness reaches it.
+Vector2 movedIn(const ProjectedSurface& surface,
+  const Vector2& q,
+  const Vector2& inward,
+  double extent)
+{
+  double depth = 1e-3 * extent;
+  double middle = 0.0;
+  for (int iteration = 0; iteration < 12; ++iteration)
+  {
+    const double half = halfThicknessAt(surface, q + depth * inward, middle);
+    depth = half > 0.0 ? std::min(half, 0.25 * extent) : 1.5 * depth;
+  }
+  return q + depth * inward;
+}
+
+/// q, or the nearest point (rings of growing radius around it) where the
+/// tissue is at least `thinnest` thick.
+Vector2 ontoTissue(const ProjectedSurface& surface, Vector2 q, double thinnest, double extent)
+{
+  double middle = 0.0;
+  for (double radius = 1e-3 * extent;
+       halfThicknessAt(surface, q, middle) < thinnest && radius < 0.1 * extent;
+       radius *= 1.5)
+  {
+    for (int k = 0; k < 16; ++k)
+    {
+      const double angle = 2.0 * M_PI * k / 16.0;
+      const Vector2 candidate = q + radius * Vector2(std::cos(angle), std::sin(angle));
+      if (halfThicknessAt(surface, candidate, middle) >= thinnest)
+      {
+        q = candidate;
+        break;
+      }
+    }
+  }
+  return q;
+}
+
 /// The border of the collision mid-surface: the outline resampled to
 /// `borderCount` points and moved in until the local half thickness
 /// reaches it, so that the border spheres reach the rim.
@@ -956,15 +996,7 @@ std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
       const Vector2& previous = border[(i + border.size() - 1) % border.size()];
       const Vector2& next = border[(i + 1) % border.size()];
       const Vector2 along = (next - previous).normalized();
-      const Vector2 inward(-along.y(), along.x());
-      double depth = 1e-3 * extent;
-      double middle = 0.0;
-      for (int iteration = 0; iteration < 12; ++iteration)
-      {
-        const double half = halfThicknessAt(surface, border[i] + depth * inward, middle);
-        depth = half > 0.0 ? std::min(half, 0.25 * extent) : 1.5 * depth;
-      }
-      moved[i] = border[i] + depth * inward;
+      moved[i] = movedIn(surface, border[i], Vector2(-along.y(), along.x()), extent);
     }
     // Moving in gathers points on concave stretches: spread them evenly
     // again along the moved outline (its corners kept).
@@ -979,26 +1011,167 @@ std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
     // nearest point where the tissue is at least a twentieth of its largest
     // thickness (rings of growing radius around it), so that its sphere
     // has a radius to reach the rim with.
-    const double thinnest = ThinnestShare * largestThickness;
     for (Vector2& q : border)
+      q = ontoTissue(surface, q, ThinnestShare * largestThickness, extent);
+  }
+  return border;
+}
+
+/// Arc length of the point of closed polyline `loop` nearest q (`at`:
+/// the arc length at each loop vertex, loop.size() + 1 entries).
+double arcLengthNearest(const Loop& loop, const std::vector<double>& at, const Vector2& q)
+{
+  double best = Infinity, where = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    const Vector2& a = loop[i];
+    const Vector2 ab = loop[(i + 1) % loop.size()] - a;
+    const double length2 = ab.squaredNorm();
+    const double t = length2 > 0.0 ? std::clamp((q - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    const double d = (a + t * ab - q).squaredNorm();
+    if (d < best)
     {
-      double middle = 0.0;
-      for (double radius = 1e-3 * extent;
-           halfThicknessAt(surface, q, middle) < thinnest && radius < 0.1 * extent;
-           radius *= 1.5)
+      best = d;
+      where = at[i] + t * (at[i + 1] - at[i]);
+    }
+  }
+  return where;
+}
+
+/// Whether segment [a, b] passes over a place where the tissue is thinner
+/// than `thinnest` (32 samples inside it).
+bool spansNoTissue(const ProjectedSurface& surface,
+  const Vector2& a,
+  const Vector2& b,
+  double thinnest)
+{
+  double middle = 0.0;
+  for (int k = 1; k < 32; ++k)
+    if (halfThicknessAt(surface, a + (b - a) * (k / 32.0), middle) < thinnest)
+      return true;
+  return false;
+}
+
+/// Whether segments [a, b] and [c, d] cross (touching ends excluded).
+bool segmentsCross(const Vector2& a, const Vector2& b, const Vector2& c, const Vector2& d)
+{
+  const auto side = [](const Vector2& p, const Vector2& q, const Vector2& r)
+  { return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x()); };
+  const double abc = side(a, b, c), abd = side(a, b, d), cda = side(c, d, a), cdb = side(c, d, b);
+  return ((abc > 0.0 && abd < 0.0) || (abc < 0.0 && abd > 0.0)) &&
+         ((cda > 0.0 && cdb < 0.0) || (cda < 0.0 && cdb > 0.0));
+}
+
+/// Whether `added` between border[i] and border[i + 1] keeps the loop
+/// simple: its two chords cross no other chord of the loop.
+bool keepsLoopSimple(const Loop& border, std::size_t i, const Vector2& added)
+{
+  const std::size_t m = border.size();
+  const Vector2& a = border[i];
+  const Vector2& b = border[(i + 1) % m];
+  for (std::size_t j = 0; j < m; ++j)
+  {
+    if (j == i)
+      continue; // the chord being replaced
+    const Vector2& c = border[j];
+    const Vector2& d = border[(j + 1) % m];
+    if (segmentsCross(a, added, c, d) || segmentsCross(added, b, c, d))
+      return false;
+  }
+  return true;
+}
+
+/// The border made to follow the bays of its outline (issue 14: a border
+/// chord that spans a bay or a bend of a slit leaves collision triangles
+/// over no tissue, round which the binding's paths must detour and cross).
+/// Where the outline between two consecutive border points runs on the
+/// tissue's side of their chord (the tissue lies left of every loop) by
+/// more than the larger half thickness at the two points, a border point
+/// is added at the outline's deepest point there, moved in like the
+/// others; again on the two new chords, `budget` points at most. Returns
+/// the border, its points in the outline's order.
+Loop followBays(const ProjectedSurface& surface,
+  const Loop& outline,
+  Loop border,
+  double extent,
+  double thinnest,
+  int budget)
+{
+  const std::size_t n = outline.size();
+  std::vector<double> at(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    at[i + 1] = at[i] + (outline[(i + 1) % n] - outline[i]).norm();
+  const double total = at.back();
+  std::vector<double> arc(border.size());
+  for (std::size_t i = 0; i < border.size(); ++i)
+    arc[i] = arcLengthNearest(outline, at, border[i]);
+  double middle = 0.0;
+  for (std::size_t i = 0; i < border.size() && budget > 0;)
+  {
+    const std::size_t next = (i + 1) % border.size();
+    const Vector2 a = border[i], b = border[next];
+    const Vector2 chord = b - a;
+    const double length = chord.norm();
+    const double from = arc[i];
+    double to = arc[next];
+    if (to <= from)
+      to += total;
+    if (to - from > 0.5 * total) // not in the outline's order: left alone
+    {
+      ++i;
+      continue;
+    }
+    // A bay is followed when deeper than the border's half thickness; a
+    // chord over no tissue (across a slit's bend) when the outline's detour
+    // is a quarter of that, and a twentieth of the chord (not for a jag of
+    // a rough rim).
+    const double half =
+      std::max(halfThicknessAt(surface, a, middle), halfThicknessAt(surface, b, middle));
+    const double tolerance =
+      spansNoTissue(surface, a, b, thinnest) ? std::max(0.25 * half, 0.05 * length) : half;
+    double deepest = tolerance;
+    std::size_t deepestVertex = n;
+    for (std::size_t k = 0; k < n && length > 0.0; ++k)
+    {
+      double s = at[k];
+      if (s < from)
+        s += total;
+      // Off the chord's ends by a tenth of the arc at least: no sliver.
+      if (s <= from + 0.1 * (to - from) || s >= to - 0.1 * (to - from))
+        continue;
+      const Vector2 p = outline[k] - a;
+      const double left = (chord.x() * p.y() - chord.y() * p.x()) / length;
+      if (left > deepest)
       {
-        for (int k = 0; k < 16; ++k)
-        {
-          const double angle = 2.0 * M_PI * k / 16.0;
-          const Vector2 candidate = q + radius * Vector2(std::cos(angle), std::sin(angle));
-          if (halfThicknessAt(surface, candidate, middle) >= thinnest)
-          {
-            q = candidate;
-            break;
-          }
-        }
+        deepest = left;
+        deepestVertex = k;
       }
     }
+    if (deepestVertex == n)
+    {
+      ++i;
+      continue;
+    }
+    const Vector2& before = outline[(deepestVertex + n - 1) % n];
+    const Vector2& after = outline[(deepestVertex + 1) % n];
+    const Vector2 along = (after - before).normalized();
+    const Vector2 added = ontoTissue(surface,
+      movedIn(surface, outline[deepestVertex], Vector2(-along.y(), along.x()), extent),
+      thinnest,
+      extent);
+    // Not beside a chord's end (its paths would run side by side with the
+    // end's and cross them), nor making the loop cross itself (a bay
+    // narrower than the tissue beside it is thick).
+    const double apart = 0.25 * length;
+    if ((added - a).norm() < apart || (added - b).norm() < apart ||
+        !keepsLoopSimple(border, i, added))
+    {
+      ++i;
+      continue;
+    }
+    border.insert(border.begin() + static_cast<std::ptrdiff_t>(i + 1), added);
+    arc.insert(arc.begin() + static_cast<std::ptrdiff_t>(i + 1), at[deepestVertex]);
+    --budget; // the chord from i is looked at again, now shorter
   }
   return border;
 }
@@ -1458,15 +1631,25 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
   const std::vector<int> counts = borderCountsOf(outline, borderCount);
   std::vector<Loop> borders;
   std::vector<Vector2> points;
+  int placed = 0;
   for (std::size_t k = 0; k < outline.size(); ++k)
   {
-    borders.push_back(placeBorder(surface, outline[k], counts[k], extent, result.largestThickness));
+    const Loop border =
+      placeBorder(surface, outline[k], counts[k], extent, result.largestThickness);
+    borders.push_back(followBays(surface,
+      outline[k],
+      border,
+      extent,
+      ThinnestShare * result.largestThickness,
+      std::max(2, counts[k] / 3)));
     points.insert(points.end(), borders.back().begin(), borders.back().end());
+    placed += static_cast<int>(borders.back().size());
   }
 
-  // 3. Interior lattice with the count that makes vertexCount in all.
+  // 3. Interior lattice with the count that makes vertexCount in all (the
+  // points added in bays taken from it).
   report(progress, 0.4, "filling the inside");
-  const int interiorCount = vertexCount - borderCount;
+  const int interiorCount = vertexCount - placed;
   std::vector<Vector2> interior =
     interiorLattice(surface, borders, interiorCount, extent, result.largestThickness);
   if (static_cast<int>(interior.size()) < interiorCount)
@@ -1499,7 +1682,7 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
     radii[i] = half;
   }
   mesh.pointAttributes.set(settings.radiusArrayName, 1, radii);
-  result.borderVertexCount = borderCount;
+  result.borderVertexCount = placed;
 
   // Two-sided Hausdorff distance to the thick surface.
   report(progress, 0.7, "measuring the Hausdorff distance");
