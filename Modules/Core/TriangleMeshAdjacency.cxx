@@ -41,29 +41,51 @@ TriangleMeshAdjacency::TriangleMeshAdjacency(std::size_t vertexCount,
     }
   }
 
-  // Edges: sort (min, max, triangle, corner) keys, then run-length group.
+  // Edges: the half-edges ordered by (lower vertex, upper vertex,
+  // triangle), then run-length grouped. A counting sort by the lower vertex
+  // (filled in triangle order, so stable) and an insertion sort of each
+  // vertex's few half-edges by the upper one give that order in linear
+  // time (preparing a 20K-vertex segmented meniscus builds the adjacency 13
+  // times: 456 M instructions with a comparison sort of all keys, 196 M).
   struct HalfEdgeKey
   {
     std::uint64_t vertices;
     int triangle;
     int corner;
   };
-  std::vector<HalfEdgeKey> keys;
-  keys.reserve(3 * triangles.size());
-  for (int t = 0; t < triangleCount; ++t)
-  {
+  std::vector<int> lowerStart(vertexCount + 1, 0);
+  for (const Triangle& tri : triangles)
     for (int k = 0; k < 3; ++k)
+      ++lowerStart[std::min(tri[k], tri[(k + 1) % 3]) + 1];
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    lowerStart[v + 1] += lowerStart[v];
+  std::vector<HalfEdgeKey> keys(3 * triangles.size());
+  {
+    std::vector<int> fill(lowerStart.begin(), lowerStart.end() - 1);
+    for (int t = 0; t < triangleCount; ++t)
     {
-      const std::uint32_t a = static_cast<std::uint32_t>(triangles[t][k]);
-      const std::uint32_t b = static_cast<std::uint32_t>(triangles[t][(k + 1) % 3]);
-      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-      keys.push_back({ key, t, k });
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::uint32_t a = static_cast<std::uint32_t>(triangles[t][k]);
+        const std::uint32_t b = static_cast<std::uint32_t>(triangles[t][(k + 1) % 3]);
+        const std::uint64_t key =
+          (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+        keys[fill[std::min(a, b)]++] = { key, t, k };
+      }
     }
   }
-  std::sort(keys.begin(),
-    keys.end(),
-    [](const HalfEdgeKey& x, const HalfEdgeKey& y)
-    { return x.vertices != y.vertices ? x.vertices < y.vertices : x.triangle < y.triangle; });
+  for (std::size_t v = 0; v < vertexCount; ++v)
+  {
+    // Stable: equal keys keep their triangle order.
+    for (int i = lowerStart[v] + 1; i < lowerStart[v + 1]; ++i)
+    {
+      const HalfEdgeKey moving = keys[i];
+      int j = i;
+      for (; j > lowerStart[v] && keys[j - 1].vertices > moving.vertices; --j)
+        keys[j] = keys[j - 1];
+      keys[j] = moving;
+    }
+  }
   TriangleEdges.assign(triangles.size(), { -1, -1, -1 });
   EdgeTriangles.resize(keys.size());
   EdgeTriangleOffsets.clear();

@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
+#include <utility>
+#include <vector>
+
 using namespace thintissue;
 
 TEST(TriangleMeshAdjacency, ClosedSurfaceHasTwoTrianglesPerEdge)
@@ -89,4 +94,43 @@ TEST(TriangleMeshAdjacency, ClosedSurfaceGenus)
     { 3, 1, 5 },
     { 0, 3, 5 } };
   EXPECT_EQ(TriangleMeshAdjacency(octahedron).closedSurfaceGenus(), 0);
+}
+
+// The edges come in (lower vertex, upper vertex) order, each edge's
+// triangles in increasing order, and every triangle corner names its edge:
+// checked against a map of every half-edge on a shuffled mesh with
+// non-manifold edges (three and four triangles on one edge) and open ones.
+TEST(TriangleMeshAdjacency, EdgesInVertexOrderWithTheirTrianglesAscending)
+{
+  std::vector<thintissue::Triangle> triangles;
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> vertex(0, 39);
+  while (triangles.size() < 400)
+  {
+    const thintissue::Triangle t{ vertex(random), vertex(random), vertex(random) };
+    if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+      triangles.push_back(t);
+  }
+  const thintissue::TriangleMeshAdjacency adjacency(40, triangles);
+  std::map<std::pair<int, int>, std::vector<int>> expected;
+  for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+    for (int k = 0; k < 3; ++k)
+      expected[std::minmax(triangles[t][k], triangles[t][(k + 1) % 3])].push_back(t);
+  ASSERT_EQ(adjacency.edgeCount(), expected.size());
+  int e = 0;
+  for (const auto& [ends, owners] : expected)
+  {
+    EXPECT_EQ(adjacency.edge(e)[0], ends.first);
+    EXPECT_EQ(adjacency.edge(e)[1], ends.second);
+    const std::vector<int> found(adjacency.edgeTrianglesBegin(e), adjacency.edgeTrianglesEnd(e));
+    EXPECT_EQ(found, owners) << "edge " << e;
+    ++e;
+  }
+  for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+    for (int k = 0; k < 3; ++k)
+    {
+      const auto& ends = adjacency.edge(adjacency.triangleEdges(t)[k]);
+      EXPECT_EQ(
+        std::minmax(ends[0], ends[1]), std::minmax(triangles[t][k], triangles[t][(k + 1) % 3]));
+    }
 }
