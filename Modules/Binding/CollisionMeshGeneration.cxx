@@ -737,22 +737,6 @@ std::vector<Vector2> resampleEvenly(const std::vector<Vector2>& polygon, int cou
   return result;
 }
 
-bool insidePolygon(const std::vector<Vector2>& polygon, const Vector2& q)
-{
-  bool inside = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
-  {
-    const Vector2& a = polygon[i];
-    const Vector2& b = polygon[j];
-    if ((a.y() > q.y()) != (b.y() > q.y()) &&
-        q.x() < (b.x() - a.x()) * (q.y() - a.y()) / (b.y() - a.y()) + a.x())
-    {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
-
 double distanceToPolygon(const std::vector<Vector2>& polygon, const Vector2& q)
 {
   double best = Infinity;

@@ -141,4 +141,20 @@ std::vector<double> rayHits(const TriangleMesh& mesh,
   return hits;
 }
 
+bool insidePolygon(const std::vector<Vector2>& polygon, const Vector2& point)
+{
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+  {
+    const Vector2& a = polygon[i];
+    const Vector2& b = polygon[j];
+    if ((a.y() > point.y()) != (b.y() > point.y()) &&
+        point.x() < (b.x() - a.x()) * (point.y() - a.y()) / (b.y() - a.y()) + a.x())
+    {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
 } // namespace thintissue

@@ -16,6 +16,11 @@ namespace thintissue
 /// solid angles, Van Oosterom and Strackee).
 THINTISSUECORE_EXPORT double windingNumber(const TriangleMesh& mesh, const Vector3& point);
 
+/// Whether `point` lies inside the closed `polygon` (its last vertex joins
+/// its first; either orientation; even-odd rule, so a point exactly on an
+/// edge may fall either way).
+THINTISSUECORE_EXPORT bool insidePolygon(const std::vector<Vector2>& polygon, const Vector2& point);
+
 /// Closest point to `point` on triangle (a, b, c).
 THINTISSUECORE_EXPORT Vector3 closestPointOnTriangle(const Vector3& point,
   const Vector3& a,

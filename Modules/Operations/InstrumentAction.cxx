@@ -1,5 +1,6 @@
 #include "InstrumentAction.h"
 
+#include "MeshQueries.h"
 #include "ThinTissueError.h"
 
 #include <algorithm>
@@ -132,29 +133,20 @@ Blade InstrumentAction::shaverBite(const RigidPose& pose) const
 std::vector<int> InstrumentAction::shavedTriangles(const TissueCutter& cutter,
   const RigidPose& pose) const
 {
-  // The window outline across the tool's x axis, and its extent along it.
-  const std::vector<Vector3>& outline = Model.biteOutline;
+  // The window outline across the tool's x axis (its y, z), and its extent
+  // along it.
+  std::vector<Vector2> window;
   double low = 1e300, high = -1e300;
-  for (const Vector3& p : outline)
+  for (const Vector3& p : Model.biteOutline)
   {
+    window.emplace_back(p.y(), p.z());
     low = std::min(low, p.x() - Settings.shaverReach);
     high = std::max(high, p.x() + Settings.shaverReach);
   }
   auto inside = [&](const Vector3& world)
   {
     const Vector3 q = pose.rotation.transpose() * (world - pose.translation);
-    if (q.x() < low || q.x() > high)
-      return false;
-    bool in = false;
-    for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++)
-    {
-      const Vector3& a = outline[i];
-      const Vector3& b = outline[j];
-      if ((a.z() > q.z()) != (b.z() > q.z()) &&
-          q.y() < (b.y() - a.y()) * (q.z() - a.z()) / (b.z() - a.z()) + a.y())
-        in = !in;
-    }
-    return in;
+    return q.x() >= low && q.x() <= high && insidePolygon(window, Vector2(q.y(), q.z()));
   };
   const std::vector<Vector3> x = cutter.currentCollisionPositions();
   const auto& triangles = cutter.collision().triangles();

@@ -662,3 +662,23 @@ TEST(TriangleBvh, DistanceToSurfaceMatchesBruteForce)
   TriangleBvh empty;
   EXPECT_TRUE(std::isinf(distanceToSurface(TriangleMesh{}, empty, Vector3::Zero())));
 }
+
+// Even-odd inside test of a closed polygon (the collision outline's loops,
+// a shaver's window): convex and concave, either orientation.
+TEST(CollisionGeometry, InsidePolygonFollowsConcaveOutlinesInEitherOrientation)
+{
+  using thintissue::Vector2;
+  // An L: the square [0, 2]^2 without its upper right quarter.
+  std::vector<Vector2> l{ { 0, 0 }, { 2, 0 }, { 2, 1 }, { 1, 1 }, { 1, 2 }, { 0, 2 } };
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    EXPECT_TRUE(thintissue::insidePolygon(l, Vector2(0.5, 0.5)));
+    EXPECT_TRUE(thintissue::insidePolygon(l, Vector2(1.5, 0.5)));
+    EXPECT_TRUE(thintissue::insidePolygon(l, Vector2(0.5, 1.5)));
+    EXPECT_FALSE(thintissue::insidePolygon(l, Vector2(1.5, 1.5))); // the notch
+    EXPECT_FALSE(thintissue::insidePolygon(l, Vector2(-0.5, 0.5)));
+    EXPECT_FALSE(thintissue::insidePolygon(l, Vector2(0.5, 2.5)));
+    std::reverse(l.begin(), l.end());
+  }
+  EXPECT_FALSE(thintissue::insidePolygon({}, Vector2(0, 0)));
+}
