@@ -240,25 +240,37 @@ void SimulatorView::update(const SceneSnapshot& snapshot)
         (RestNormals[i] + moved.normals[i] - ComputedRestNormals[i]).normalized();
       normals->SetTuple(static_cast<vtkIdType>(i), normal.data());
     }
-    if (!CutShading.triangles.empty())
-    {
-      // The cut surface is the cutter's own triangulation: its computed
-      // normals are smooth already.
-      CutShading.positions.assign(moved.positions.begin(), moved.positions.end());
-      CutShading.computeVertexNormals();
-      vtkDataArray* cutNormals = CutSurface->GetPointData()->GetNormals();
-      for (std::size_t i = 0; i < CutShading.normals.size(); ++i)
-      {
-        cutNormals->SetTuple(static_cast<vtkIdType>(i), CutShading.normals[i].data());
-      }
-      cutNormals->Modified();
-    }
+    updateCutSurfaceNormals(moved.positions);
     points->Modified();
     normals->Modified();
     Tissue->Modified();
     CutSurface->Modified();
   }
   placeInstrumentAndCamera(snapshot);
+}
+
+void SimulatorView::updateCutSurfaceNormals(const std::vector<Vector3>& positions)
+{
+  // The cut surface is the cutter's own triangulation: its computed
+  // normals are smooth already. Only its vertices are touched.
+  if (CutTriangles.empty())
+    return;
+  for (int v : CutVertices)
+    CutNormals[v].setZero();
+  for (const Triangle& t : CutTriangles)
+  {
+    const Vector3 n = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+    for (int v : t)
+      CutNormals[v] += n;
+  }
+  vtkDataArray* normals = CutSurface->GetPointData()->GetNormals();
+  for (int v : CutVertices)
+  {
+    const double length = CutNormals[v].norm();
+    const Vector3 n = length > 0.0 ? Vector3(CutNormals[v] / length) : Vector3::UnitZ();
+    normals->SetTuple(static_cast<vtkIdType>(v), n.data());
+  }
+  normals->Modified();
 }
 
 void SimulatorView::placeInstrumentAndCamera(const SceneSnapshot& snapshot)
@@ -328,7 +340,8 @@ void SimulatorView::rebuildTissue(const SceneTopology& topology)
   vtkNew<vtkCellArray> outer;
   vtkNew<vtkCellArray> inner;
   Shading.triangles.clear();
-  CutShading.triangles.clear();
+  CutTriangles.clear();
+  std::vector<char> onCut(mesh.vertexCount(), 0);
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
   {
     if (!active[t])
@@ -339,8 +352,15 @@ void SimulatorView::rebuildTissue(const SceneTopology& topology)
     const vtkIdType ids[3] = { corners[0], corners[1], corners[2] };
     const bool cut = materials && (*materials)[t] == VisualMaterial::CutSurface;
     (cut ? inner : outer)->InsertNextCell(3, ids);
-    (cut ? CutShading : Shading).triangles.push_back(corners);
+    (cut ? CutTriangles : Shading.triangles).push_back(corners);
+    for (int v : corners)
+      onCut[v] = onCut[v] || cut;
   }
+  CutVertices.clear();
+  for (std::size_t v = 0; v < onCut.size(); ++v)
+    if (onCut[v])
+      CutVertices.push_back(static_cast<int>(v));
+  CutNormals.assign(mesh.vertexCount(), Vector3::Zero());
   for (vtkPolyData* part : { Tissue.GetPointer(), CutSurface.GetPointer() })
   {
     vtkNew<vtkDoubleArray> normals;

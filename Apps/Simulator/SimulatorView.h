@@ -42,6 +42,8 @@ private:
   void rebuildTissue(const SceneTopology& topology);
   void showJaws(double jawOpening);
   void placeInstrumentAndCamera(const SceneSnapshot& snapshot);
+  /// The cut surfaces' normals from `positions` (their own triangles only).
+  void updateCutSurfaceNormals(const std::vector<Vector3>& positions);
   void addRoundFieldOfView();
   void placeRing(double aspect);
   static constexpr int RingSegments = 96;
@@ -53,12 +55,16 @@ private:
   vtkSmartPointer<vtkPolyData> Tissue = vtkSmartPointer<vtkPolyData>::New();
   vtkSmartPointer<vtkPolyData> CutSurface = vtkSmartPointer<vtkPolyData>::New();
   int TopologyVersion = -1;
-  /// The drawn triangles of the outer surface and of the cut surfaces, for
-  /// their normals each frame. Each surface has its own normal array: a lip
-  /// vertex both share is smooth on each side of the crease, not averaged
-  /// across it (that showed as light and dark streaks at the lips).
+  /// The drawn triangles of the outer surface, for its normals each frame.
   TriangleMesh Shading;
-  TriangleMesh CutShading;
+  /// The cut surfaces' triangles and vertices, and their normals (one per
+  /// visual vertex, set on the cut-surface vertices only). Each surface has
+  /// its own normal array: a lip vertex both share is smooth on each side
+  /// of the crease, not averaged across it (that showed as light and dark
+  /// streaks at the lips).
+  std::vector<Triangle> CutTriangles;
+  std::vector<int> CutVertices;
+  std::vector<Vector3> CutNormals;
   /// Per visual vertex: its rest normal (the mesh's) and the normal
   /// computed from its rest positions on the outer surface.
   std::vector<Vector3> RestNormals;
