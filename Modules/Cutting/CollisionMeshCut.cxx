@@ -856,6 +856,10 @@ void CuttableCollisionMesh::openAlongCut(CollisionCutResult& result)
       trianglesOfEdge(static_cast<int>(*it >> 32), static_cast<int>(*it & 0xffffffffu));
     it = (onEdge[1] < 0) ? CutEdges.erase(it) : std::next(it);
   }
+  // Each changed triangle once, ascending (splitting and opening both list them).
+  auto& changed = result.changedTriangles;
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
 }
 
 void CuttableCollisionMesh::keepCutEdgesOfCopy(int t, int v, int copy)
@@ -936,10 +940,6 @@ CollisionCutResult CuttableCollisionMesh::cutAlongEdges(std::vector<std::array<i
       result.cutEdges.push_back(edge);
   }
   openAlongCut(result);
-  std::sort(result.changedTriangles.begin(), result.changedTriangles.end());
-  result.changedTriangles.erase(
-    std::unique(result.changedTriangles.begin(), result.changedTriangles.end()),
-    result.changedTriangles.end());
   return result;
 }
 
@@ -994,10 +994,6 @@ CollisionCutResult CuttableCollisionMesh::cut(const Blade& blade,
   // Tips are found before opening: a copy made by opening is not a tip.
   updateTips(sweepFeatures, reachedTips, sweepCutEdges);
   openAlongCut(result);
-  std::sort(result.changedTriangles.begin(), result.changedTriangles.end());
-  result.changedTriangles.erase(
-    std::unique(result.changedTriangles.begin(), result.changedTriangles.end()),
-    result.changedTriangles.end());
   return result;
 }
 

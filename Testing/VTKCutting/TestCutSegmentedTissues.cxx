@@ -104,13 +104,25 @@ void operatePrepared(const TissueBundle& bundle, const std::string& name, unsign
   EXPECT_GT(operations.Contours, 5) << name;
 }
 
-/// The test bed's meniscus prepared as the sweeps prepare it.
+/// The test bed's meniscus prepared for the sweeps and the operations.
 TissueBundle preparedSegmentedMeniscus(MeniscusTearType tear)
 {
   TissuePreparationSettings settings;
   settings.collision.vertexCount = 105;
   settings.hexahedronCount = 42;
   return prepareTissue(segmentedMeniscus(tear, 7u + static_cast<unsigned>(tear)), settings);
+}
+
+/// The MRI menisci of ../shared/data (Smith 2019, right knee, medial and
+/// lateral); none when the data is not there.
+std::vector<std::string> mriMeniscusFiles()
+{
+  const std::string data = thintissue::testing::sharedDataDirectory();
+  const std::string directory = data + "/knee-smith2019";
+  if (data.empty() || !std::filesystem::exists(directory))
+    return {};
+  return { directory + "/smith2019-R-medial-meniscus.stl",
+    directory + "/smith2019-R-lateral-meniscus.stl" };
 }
 
 /// An MRI meniscus of ../shared/data (metres) in millimetres, as the
@@ -134,11 +146,7 @@ class CutSegmentedMeniscus : public ::testing::TestWithParam<MeniscusTearType>
 
 TEST_P(CutSegmentedMeniscus, RandomSweepsKeepEveryInvariant)
 {
-  TissuePreparationSettings settings;
-  settings.collision.vertexCount = 105;
-  settings.hexahedronCount = 42;
-  const TissueBundle bundle =
-    prepareTissue(segmentedMeniscus(GetParam(), 7u + static_cast<unsigned>(GetParam())), settings);
+  const TissueBundle bundle = preparedSegmentedMeniscus(GetParam());
   sweepPrepared(bundle, "segmented " + bundle.visual.name, 31u, 10);
 }
 
@@ -165,12 +173,11 @@ INSTANTIATE_TEST_SUITE_P(Tears,
 // prepared as ThinTissuePrepare does, cut at random.
 TEST(CutMriMeniscus, RandomSweepsKeepEveryInvariant)
 {
-  const std::string directory = thintissue::testing::sharedDataDirectory() + "/knee-smith2019";
-  if (thintissue::testing::sharedDataDirectory().empty() || !std::filesystem::exists(directory))
+  const std::vector<std::string> files = mriMeniscusFiles();
+  if (files.empty())
     GTEST_SKIP() << "no shared data (knee-smith2019)";
-  for (const char* side : { "medial", "lateral" })
+  for (const std::string& file : files)
   {
-    const std::string file = directory + "/smith2019-R-" + side + "-meniscus.stl";
     const PreparedTissues prepared = prepareTissues(readTriangleMesh(file), {});
     ASSERT_EQ(prepared.tissues.size(), 1u) << file;
     sweepPrepared(prepared.tissues.front(), file, 57u, 10);
@@ -180,12 +187,11 @@ TEST(CutMriMeniscus, RandomSweepsKeepEveryInvariant)
 // The MRI menisci in millimetres under random operations.
 TEST(CutMriMeniscus, RandomOperationsKeepEveryInvariant)
 {
-  const std::string directory = thintissue::testing::sharedDataDirectory() + "/knee-smith2019";
-  if (thintissue::testing::sharedDataDirectory().empty() || !std::filesystem::exists(directory))
+  const std::vector<std::string> files = mriMeniscusFiles();
+  if (files.empty())
     GTEST_SKIP() << "no shared data (knee-smith2019)";
-  for (const char* side : { "medial", "lateral" })
+  for (const std::string& file : files)
   {
-    const std::string file = directory + "/smith2019-R-" + side + "-meniscus.stl";
     operatePrepared(preparedMriMeniscus(file), file, 1911u);
   }
 }
