@@ -199,14 +199,12 @@ void TissueCutter::updateSolver(const HexahedronDuplicationResult& duplication)
   for (const auto& [copy, source] : duplication.newNodes)
   {
     // Node copies may chain (a copy of a copy): the source exists already.
-    const std::size_t made = Solver->addNode(
-      Solver->restPositions()[source], Solver->positions()[source], Solver->velocities()[source]);
+    const std::size_t made = Solver->addNodeCopy(static_cast<std::size_t>(source));
     if (made != static_cast<std::size_t>(copy))
     {
       throw InvalidInputError(
         "tissue cutter for '" + Collision.name() + "': the solver's nodes are out of step");
     }
-    Solver->setFixed(made, Solver->isFixed(source));
   }
   for (const auto& [copy, source] : duplication.newHexahedra)
   {

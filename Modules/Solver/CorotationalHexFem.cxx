@@ -454,6 +454,17 @@ std::size_t CorotationalHexFem::addNode(const Vector3& rest,
   return Positions.size() - 1;
 }
 
+std::size_t CorotationalHexFem::addNodeCopy(std::size_t source)
+{
+  checkNode(source, "a copy");
+  // Copied first: push_back may move the arrays the references point into.
+  const Vector3 rest = RestPositions[source], position = Positions[source],
+                velocity = Velocities[source];
+  const std::size_t copy = addNode(rest, position, velocity);
+  Fixed[copy] = Fixed[source];
+  return copy;
+}
+
 std::size_t CorotationalHexFem::addHexahedron(const Hexahedron& nodes,
   const LinearMaterial& material)
 {

@@ -313,6 +313,9 @@ public:
   /// A new node at rest position `rest` (current position and velocity as
   /// given); returns its index. Not simulated until a hexahedron uses it.
   std::size_t addNode(const Vector3& rest, const Vector3& position, const Vector3& velocity);
+  /// A copy of node `source` (rest and current position, velocity, fixed
+  /// flag): the node duplication of a cut (5.3.1). Returns its index.
+  std::size_t addNodeCopy(std::size_t source);
   /// A new hexahedron (VTK order); returns its index.
   std::size_t addHexahedron(const Hexahedron& nodes, const LinearMaterial& material);
   /// A copy of hexahedron h on other nodes with the same rest positions

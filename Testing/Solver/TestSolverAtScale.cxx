@@ -247,8 +247,9 @@ namespace
 {
 /// Cuts the block's hexahedra of x in (cutX - 1, cutX) and y < cutY from
 /// their neighbours across x = cutX: their corners on that plane are
-/// replaced by new nodes (a cut's node duplication, thesis 5.3.1).
-void cutBlock(CorotationalHexFem& fem, double cutX, double cutY)
+/// replaced by new nodes (a cut's node duplication, thesis 5.3.1), plain
+/// ones or copies of the nodes (addNodeCopy).
+void cutBlock(CorotationalHexFem& fem, double cutX, double cutY, bool copyNodes = false)
 {
   std::map<int, int> copies;
   for (std::size_t h = 0; h < fem.hexahedronCount(); ++h)
@@ -270,7 +271,10 @@ void cutBlock(CorotationalHexFem& fem, double cutX, double cutY)
         if (copies.count(node) == 0)
         {
           copies[node] = static_cast<int>(
-            fem.addNode(fem.restPositions()[node], fem.positions()[node], fem.velocities()[node]));
+            copyNodes
+              ? fem.addNodeCopy(static_cast<std::size_t>(node))
+              : fem.addNode(
+                  fem.restPositions()[node], fem.positions()[node], fem.velocities()[node]));
         }
         node = copies[node];
       }
@@ -334,6 +338,44 @@ TEST(SolverAtScale, ACutDuringABackgroundRefreshReplaysAndMovesAsRefactorizingEv
   }
   ASSERT_GT(moved, 0.0);
   EXPECT_LT(largestDifference(prompt, exact), 1e-6 * moved);
+}
+
+TEST(SolverAtScale, ANodeCopyIsItsSourcesTwinAndACutOfCopiesMovesLikeOneOfNewNodes)
+{
+  // A copy has its source's rest and current position, velocity and fixed
+  // flag; a cut made of copies moves as one made of new nodes.
+  const HexahedralMesh mesh = fixedBlock(10, 4, 2);
+  const CorotationalHexFemSettings settings = withSolver(LinearSolverKind::Cholmod);
+  auto cutAndStep = [&](bool copyNodes)
+  {
+    CorotationalHexFem fem(mesh, tissue(10.0), settings);
+    fem.setExternalForce(mesh.nodeCount() - 1, Vector3(0.0, 0.2, -0.5));
+    for (int k = 0; k < 5; ++k)
+    {
+      EXPECT_TRUE(fem.step().ok);
+    }
+    const std::size_t before = fem.nodeCount();
+    cutBlock(fem, 5.0, 2.0, copyNodes);
+    EXPECT_GT(fem.nodeCount(), before);
+    for (int k = 0; k < 5; ++k)
+    {
+      EXPECT_TRUE(fem.step().ok);
+    }
+    return fem.positions();
+  };
+  const std::vector<Vector3> fromCopies = cutAndStep(true);
+  EXPECT_EQ(fromCopies, cutAndStep(false));
+
+  CorotationalHexFem fem(mesh, tissue(10.0), settings);
+  fem.setFixed(3, true);
+  std::vector<Vector3> velocities(fem.nodeCount(), Vector3::Zero());
+  velocities[3] = Vector3(1.0, 2.0, 3.0);
+  fem.setVelocities(velocities);
+  const std::size_t copy = fem.addNodeCopy(3);
+  EXPECT_EQ(fem.restPositions()[copy], fem.restPositions()[3]);
+  EXPECT_EQ(fem.velocities()[copy], Vector3(1.0, 2.0, 3.0));
+  EXPECT_TRUE(fem.isFixed(copy));
+  EXPECT_THROW(fem.addNodeCopy(fem.nodeCount()), InvalidInputError);
 }
 
 TEST(SolverAtScale, BadSettingsAreRefusedClearly)
