@@ -70,11 +70,32 @@ constexpr int HexahedronFaces[6][4] = {
   { 4, 5, 6, 7 },
 };
 
-double boundaryDistance(const HexahedronCorners& c, const Vector3& p, Vector3& closest)
+double squaredDistanceToBox(const BoundingBox& box, const Vector3& p)
+{
+  const Vector3 below = (box.min() - p).cwiseMax(0.0);
+  const Vector3 above = (p - box.max()).cwiseMax(0.0);
+  return below.squaredNorm() + above.squaredNorm();
+}
+
+/// Distance from p to the hexahedron's triangulated boundary and its
+/// closest point. Faces whose bounding box lies farther than `bound` (or
+/// than the best found so far) are skipped: their triangles cannot be
+/// nearer. Infinity (closest unset) when every face is farther than bound.
+double boundaryDistance(const HexahedronCorners& c,
+  const Vector3& p,
+  Vector3& closest,
+  double bound = std::numeric_limits<double>::infinity())
 {
   double best = std::numeric_limits<double>::infinity();
+  const double boundSquared = bound * bound;
   for (const auto& face : HexahedronFaces)
   {
+    BoundingBox box(c[face[0]], c[face[0]]);
+    for (int e = 1; e < 4; ++e)
+      box.extend(c[face[e]]);
+    const double lower = squaredDistanceToBox(box, p);
+    if (lower > boundSquared || lower > best)
+      continue;
     const Vector3 centre = 0.25 * (c[face[0]] + c[face[1]] + c[face[2]] + c[face[3]]);
     for (int e = 0; e < 4; ++e)
     {
@@ -88,13 +109,6 @@ double boundaryDistance(const HexahedronCorners& c, const Vector3& p, Vector3& c
     }
   }
   return std::sqrt(best);
-}
-
-double squaredDistanceToBox(const BoundingBox& box, const Vector3& p)
-{
-  const Vector3 below = (box.min() - p).cwiseMax(0.0);
-  const Vector3 above = (p - box.max()).cwiseMax(0.0);
-  return below.squaredNorm() + above.squaredNorm();
 }
 
 std::string meshContext(const HexahedralMesh& mesh)
@@ -515,7 +529,7 @@ int HexahedronLocator::findNearest(const Vector3& p, double& distance) const
         continue;
       }
       Vector3 closest;
-      const double d = boundaryDistance(Corners[e], p, closest);
+      const double d = boundaryDistance(Corners[e], p, closest, best);
       if (d < best || (d == best && Hexahedra[e] < Hexahedra[bestEntry]))
       {
         best = d;
