@@ -579,7 +579,7 @@ TissueCutReport TissueCutter::removeTriangles(const std::vector<int>& triangles)
     const auto removalStart = Clock::now();
     if (Settings.freePieces == FreePieceHandling::HandOver)
       report.handedOver.push_back(extractPiece(removed));
-    removePiece(removed);
+    removePiece(removed, report);
     ++report.removedPieces;
     // What the removal left apart from the rest (a bridge shaved through).
     if (report.collision.changed())

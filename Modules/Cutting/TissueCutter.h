@@ -81,6 +81,9 @@ struct TissueCutReport
   /// Pieces removed by this cut (free pieces dropped or handed over, and
   /// fragments), and those handed over.
   int removedPieces = 0;
+  /// The collision triangles those pieces held (taken out of the tissue
+  /// by this cut), piece by piece.
+  std::vector<int> removedTriangles;
   std::vector<TissuePiece> handedOver;
   /// Set when the visual cut failed (a binding it cannot follow, e.g. paths
   /// sharing segments on some prepared tissues): the collision and
@@ -219,7 +222,7 @@ private:
   bool cutMaySeparate(const TissueCutReport& report);
   bool activeMeshIsOnePiece() const;
   TissuePiece extractPiece(const std::vector<int>& triangles) const;
-  void removePiece(const std::vector<int>& triangles);
+  void removePiece(const std::vector<int>& triangles, TissueCutReport& report);
 
   TissueCutterSettings Settings;
   CuttableCollisionMesh Collision;

@@ -202,7 +202,7 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
       continue;
     if (!fragment && Settings.freePieces == FreePieceHandling::HandOver)
       report.handedOver.push_back(extractPiece(list));
-    removePiece(list);
+    removePiece(list, report);
     ++report.removedPieces;
     --remaining;
   }
@@ -278,10 +278,11 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
   return piece;
 }
 
-void TissueCutter::removePiece(const std::vector<int>& triangles)
+void TissueCutter::removePiece(const std::vector<int>& triangles, TissueCutReport& report)
 {
   for (int t : triangles)
     Active[t] = 0;
+  report.removedTriangles.insert(report.removedTriangles.end(), triangles.begin(), triangles.end());
   if (!Solver)
     return;
   // Its nodes are held, and its hexahedra (a piece shares none with the

@@ -139,25 +139,32 @@ std::vector<char> WrinkleGenerator::placeAfterCut(const TissueCutter& cutter,
   const HexahedralMesh& mesh = cutter.simulation();
   Embedding.updateHexahedra(mesh, report.simulation.renodedHexahedra);
   std::vector<char> keep(Monitors.size(), 1);
-  // Per hexahedron (-1 not known yet): whether one of its collision
-  // triangles is out of the tissue. A point in an uncopied hexahedron all
-  // of whose triangles remain keeps its place; only removals can drop it.
-  std::vector<signed char> losesTriangles(mesh.hexahedra.size(), -1);
-  const auto hasInactiveTriangle = [&](int h)
+  // The hexahedra this cut looked at: those whose branches it analysed
+  // and those that lost a collision triangle, each with every copy of its
+  // original (triangles move between copies, and a point's nearest
+  // triangle is sought among them all). A point elsewhere keeps its
+  // place: its nearest triangle was part of the tissue after the last cut
+  // and is still held by its hexahedron (a split keeps its pieces so).
+  std::vector<char> lookedAt(mesh.hexahedra.size(), 0);
+  const HexahedralBranches& branches = cutter.branches();
+  const auto markFamily = [&](int h)
   {
-    if (losesTriangles[h] < 0)
-    {
-      const std::vector<int>& held = cutter.branches().trianglesOf(h);
-      losesTriangles[h] =
-        std::any_of(held.begin(), held.end(), [&](int t) { return !cutter.isActive(t); });
-    }
-    return losesTriangles[h] != 0;
+    for (const int copy : branches.copiesOf(h))
+      lookedAt[copy] = 1;
   };
+  for (const int h : report.simulation.touchedHexahedra)
+    markFamily(h);
+  for (const auto& [copy, source] : report.simulation.newHexahedra)
+    markFamily(source);
+  for (const int t : report.removedTriangles)
+  {
+    for (const int h : branches.hexahedraOf(t))
+      markFamily(h); // nearestTriangle looks at the whole family
+  }
   for (std::size_t i = 0; i < Monitors.size(); ++i)
   {
     const int h = Embedding.hexahedron(i);
-    if (cutter.branches().copiesOf(h).size() < 2 &&
-        (report.removedPieces == 0 || !hasInactiveTriangle(h)))
+    if (!lookedAt[h])
     {
       continue;
     }

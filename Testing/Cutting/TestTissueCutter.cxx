@@ -553,6 +553,11 @@ TEST(TissueCutterSeparation, RemovedTrianglesGoWithTheirVisualAndTheOpeningIsClo
   EXPECT_TRUE(report.collision.splits.empty()) << "nothing is split";
   EXPECT_EQ(cutter.activeTriangleCount(), sheet.model.collision.triangleCount() - shaved.size());
   ASSERT_EQ(report.removedPieces, 1);
+  // The report names the triangles taken out (nothing was split: the
+  // shaved ones themselves).
+  std::vector<int> named = report.removedTriangles;
+  std::sort(named.begin(), named.end());
+  EXPECT_EQ(named, shaved);
   ASSERT_EQ(report.handedOver.size(), 1u);
   const TissuePiece& piece = report.handedOver.front();
   EXPECT_NEAR(piece.collisionArea, area, 1e-9 * area);
@@ -572,6 +577,7 @@ TEST(TissueCutterSeparation, RemovedTrianglesGoWithTheirVisualAndTheOpeningIsClo
   const auto again = cutter.removeTriangles(shaved);
   EXPECT_FALSE(again.changed());
   EXPECT_EQ(again.removedPieces, 0);
+  EXPECT_TRUE(again.removedTriangles.empty());
 }
 
 TEST(TissueCutterSeparation, FragmentsBelowTheSizeAreRemovedWholeAndAttachedPiecesStay)
