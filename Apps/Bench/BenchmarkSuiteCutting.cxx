@@ -3,7 +3,8 @@
 // (5.3.1), hexahedron duplication with the solver update, the
 // collision-simulation embedding update, and the whole cut; then the
 // solver's first step after the cut (new pattern and factor). Cases: the
-// thin sheet with the collision meshes of table 5-6, the medial meniscus,
+// thin sheet with the collision meshes of table 5-6, the medial meniscus
+// (intact, and with a horizontal cleavage),
 // the steak of table 5-2 (when ../shared/data holds it), and the counts of
 // vertices and elements over 6 consecutive cuts (fig. 5-17); a contouring
 // pass over a jagged rim (6.4.4); a basket-punch bite on the meniscus with
@@ -418,6 +419,19 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
   }
   const MeniscusModel meniscus = makeMeniscus();
   cutAndReport("medial meniscus", meniscus.collision, meniscus.simulation, repetitions, reporter);
+  // A cut across the C through a horizontal cleavage's leaves and body
+  // (junction edges shared by three collision triangles).
+  MeniscusParameters cleavedParameters;
+  cleavedParameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
+  const MeniscusModel cleaved = makeMeniscus(cleavedParameters);
+  const std::string cleavedName = "medial meniscus with a horizontal cleavage";
+  cutAndReport(cleavedName, cleaved.collision, cleaved.simulation, repetitions, reporter);
+  cutVisualAndReport(cleavedName + ", visual, sweep across",
+    bindVisualToCollision(cleaved.visual, cleaved.collision),
+    cleaved.simulation,
+    scalpelAcross(boundingBoxOf(cleaved.collision.positions), 0.53),
+    repetitions,
+    reporter);
   const std::string steak = context.sharedDataDirectory + "/steak/steak.obj";
   if (!std::filesystem::exists(steak))
   {
