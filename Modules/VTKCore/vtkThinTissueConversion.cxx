@@ -36,7 +36,11 @@ vtkSmartPointer<vtkPoints> makePoints(const std::vector<Vector3>& positions)
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(static_cast<vtkIdType>(positions.size()));
-  std::memcpy(coordinates->GetPointer(0), positions.data(), positions.size() * sizeof(Vector3));
+  // An empty array's pointer is null, and memcpy from or to null is undefined.
+  if (!positions.empty())
+  {
+    std::memcpy(coordinates->GetPointer(0), positions.data(), positions.size() * sizeof(Vector3));
+  }
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetData(coordinates);
   return points;
@@ -127,7 +131,8 @@ vtkSmartPointer<vtkPolyData> toPolyData(const TriangleMesh& mesh)
 {
   auto polyData = vtkSmartPointer<vtkPolyData>::New();
   polyData->SetPoints(makePoints(mesh.positions));
-  polyData->SetPolys(makeCells(mesh.triangles.data()->data(), mesh.triangles.size(), 3));
+  polyData->SetPolys(makeCells(
+    mesh.triangles.empty() ? nullptr : mesh.triangles.data()->data(), mesh.triangles.size(), 3));
 
   if (mesh.hasNormals())
   {

@@ -116,3 +116,15 @@ TEST(Conversion, HexahedralMeshRoundTripWithFixedNodes)
   unstructured->InsertNextCell(VTK_TETRA, 4, tetra);
   EXPECT_THROW(fromUnstructuredGrid(unstructured, "grid"), InvalidInputError);
 }
+
+// An empty mesh (a source with nothing to output, e.g. a blade source with bad
+// parameters) converts to an empty polydata. Before, the conversion copied
+// from and to null pointers and called std::array::data on one: undefined
+// behaviour that only UndefinedBehaviorSanitizer reports (issue 13).
+TEST(Conversion, AnEmptyTriangleMeshGivesAnEmptyPolyData)
+{
+  const auto polyData = toPolyData(TriangleMesh{});
+  ASSERT_NE(polyData, nullptr);
+  EXPECT_EQ(polyData->GetNumberOfPoints(), 0);
+  EXPECT_EQ(polyData->GetNumberOfPolys(), 0);
+}
