@@ -7,7 +7,7 @@
  *   gcc -shared -fPIC -o keep-modules-loaded.so keep-modules-loaded.c
  *   LD_PRELOAD="$(gcc -print-file-name=libasan.so) ./keep-modules-loaded.so"
  */
-int dlclose(void *handle)
+int dlclose(void* handle)
 {
   (void)handle;
   return 0;
