@@ -6,6 +6,7 @@
 // jaw, on a fine grid over the outline (thesis 6.4.2).
 #include "BoxSurface.h"
 #include "InstrumentAction.h"
+#include "MeshQueries.h"
 #include "OperationTestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -21,21 +22,6 @@ namespace
 {
 
 using Point2 = Eigen::Vector2d;
-
-/// Whether `p` lies inside the closed polygon (even-odd rule).
-bool insidePolygon(const std::vector<Point2>& polygon, const Point2& p)
-{
-  bool inside = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
-  {
-    const Point2& a = polygon[i];
-    const Point2& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-      inside = !inside;
-  }
-  return inside;
-}
 
 /// Where the line {(x, p.x, p.y)} (tool frame: x across the jaws) meets
 /// triangle (a, b, c), if it does: its x.
