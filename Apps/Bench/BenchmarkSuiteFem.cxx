@@ -16,6 +16,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -107,6 +108,17 @@ StepStatistics measureSteps(const FemCase& c,
       throw std::runtime_error(c.name + ": " + result.message);
     }
     iterations.push_back(result.iterations);
+    if (std::getenv("THINTISSUE_BENCH_FEM_TRACE") != nullptr)
+    {
+      std::fprintf(stderr,
+        "%s step %d: %.3f ms, %d iterations, %d factorizations (%d in steps)\n",
+        c.name.c_str(),
+        k,
+        milliseconds.back(),
+        result.iterations,
+        fem.factorizationCount(),
+        fem.synchronousFactorizationCount());
+    }
   }
   return { percentile(milliseconds, 0.5),
     percentile(milliseconds, 0.99),

@@ -121,6 +121,13 @@ void replayScenario(const std::string& recordingPath,
     cuts.report(name, reporter);
   }
   reporter.report(name, "replay speed, rendering off", duration / wall, "x real time");
+  // The steps that pay a whole factorization (the first, after each cut,
+  // and when the stale factor stopped converging): they set the 99th
+  // percentile at these sizes.
+  reporter.report(name,
+    "factorizations inside steps per 1,000 steps",
+    1e3 * scene.solver().synchronousFactorizationCount() / std::max<std::size_t>(1, steps.size()),
+    "factorizations");
   // Temporal coherence (CollisionSceneParameters::candidateMarginPerRadius):
   // how often the tissue moved beyond the margin or was cut (not reported
   // without obstacles: none).

@@ -129,6 +129,8 @@ public:
   const CutStepTimes& lastCutTimes() const { return LastCutTimes; }
   /// The collision scene of the last step (contacts, statistics).
   const CollisionScene& contacts() const { return Contacts; }
+  /// The tissue's FEM (read only: counts, positions, settings).
+  const CorotationalHexFem& solver() const { return *Fem; }
 
 private:
   void buildTissue();

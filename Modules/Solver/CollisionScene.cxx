@@ -1006,13 +1006,17 @@ bool CollisionScene::solveJointly(SolverResult& result)
   in.direction = in.preconditioned;
   double rho = in.residual.dot(in.preconditioned);
   int iterations = 0;
-  for (; iterations < settings.conjugateGradientMaxIterations && in.residual.norm() > target;
-       ++iterations)
+  while (iterations < settings.conjugateGradientMaxIterations && in.residual.norm() > target)
   {
     in.multiply(in.direction, in.product);
     const double step = rho / in.direction.dot(in.product);
     in.x += step * in.direction;
     in.residual -= step * in.product;
+    ++iterations;
+    if (in.residual.norm() <= target || iterations == settings.conjugateGradientMaxIterations)
+    {
+      break; // no preconditioner solve for a direction never taken
+    }
     if (!in.precondition(in.residual, in.preconditioned, message))
     {
       result.ok = false;

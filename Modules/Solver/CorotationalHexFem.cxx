@@ -197,6 +197,8 @@ struct BackgroundRefactorization
   /// in a step since, is dropped when it lands, not waited for at once.
   long long pattern = -1;
   long long startStep = -1;
+  /// The nodal rotations of `matrix`'s step (see LinearSystem::factorRotations).
+  std::vector<Eigen::Matrix3d> rotations;
   std::thread worker;
   bool ok = false;
   /// Step index at which it lands; -1 when none runs.
@@ -232,6 +234,16 @@ struct CorotationalHexFem::LinearSystem
   bool factorValid = false;
   /// The step whose matrix `factor` is of.
   long long factorStep = -1;
+  /// Per free node (DOF / 3), the rotation of the material around it: the
+  /// polar factor of the mean of its hexahedra's rotations, this step's
+  /// and that of the factor's step. Q = R R_f^T takes the factor's matrix
+  /// to nearly this step's (A ~ Q A_f Q^T), so the stale factor follows the
+  /// tissue's rotations (see CorotationalHexFemSettings::rotateStaleFactor).
+  std::vector<Eigen::Matrix3d> nodeRotations;
+  std::vector<Eigen::Matrix3d> factorRotations;
+  std::vector<Eigen::Matrix3d> relativeRotations;
+  bool rotatesFactor = false; // this step applies relativeRotations
+  Eigen::VectorXd rotatedRight, rotatedSolution;
   /// Patterns built so far: which one a factor was analysed for.
   long long pattern = 0;
   int factorizations = 0;
@@ -1080,6 +1092,8 @@ bool CorotationalHexFem::factorize(std::string& message)
   LinearSystem& s = *System;
   s.factorValid = s.factor->factorize(s.matrix, s.pattern, Settings);
   s.factorStep = s.stepIndex;
+  s.factorRotations = s.nodeRotations;
+  s.rotatesFactor = false; // the factor is of this step's matrix
   ++s.factorizations;
   ++s.synchronousFactorizations;
   s.excessIterations = 0;
@@ -1109,6 +1123,7 @@ void CorotationalHexFem::startBackgroundRefactorization()
   refresh.matrix = s.matrix; // this step's matrix; the next steps reassemble theirs
   refresh.pattern = s.pattern;
   refresh.startStep = s.stepIndex;
+  refresh.rotations = s.nodeRotations;
   refresh.dueStep = s.stepIndex + Settings.backgroundRefactorizationLag;
   refresh.worker = std::thread(
     [&refresh, pattern = s.pattern, settings = Settings, hook = s.backgroundHook]
@@ -1135,8 +1150,10 @@ void CorotationalHexFem::landBackgroundRefactorization()
   if (refresh.ok && refresh.pattern == s.pattern && refresh.startStep > s.factorStep)
   {
     std::swap(s.factor, refresh.factor); // the old factor is reused for the next refresh
+    std::swap(s.factorRotations, refresh.rotations);
     s.factorValid = true;
     s.factorStep = refresh.startStep;
+    updateRelativeRotations();
     s.excessIterations = 0;
   }
 }
@@ -1165,18 +1182,106 @@ bool CorotationalHexFem::iteratePreconditioned(Eigen::VectorXd& x,
   precondition(s.residual, s.preconditioned);
   s.direction = s.preconditioned;
   double rho = s.residual.dot(s.preconditioned);
-  for (iterations = 0; iterations < limit && s.residual.norm() > target; ++iterations)
+  for (iterations = 0; iterations < limit && s.residual.norm() > target;)
   {
     s.product.noalias() = A * s.direction;
     const double step = rho / s.direction.dot(s.product);
     x += step * s.direction;
     s.residual -= step * s.product;
+    ++iterations;
+    if (s.residual.norm() <= target || iterations == limit)
+    {
+      break; // no preconditioner solve for a direction never taken
+    }
     precondition(s.residual, s.preconditioned);
     const double next = s.residual.dot(s.preconditioned);
     s.direction = s.preconditioned + (next / rho) * s.direction;
     rho = next;
   }
   return s.residual.norm() <= target;
+}
+
+bool CorotationalHexFem::tracksFactorRotations() const
+{
+  const LinearSolverKind kind = Settings.solver;
+  return Settings.rotateStaleFactor && Settings.corotational &&
+         (kind == LinearSolverKind::StaleFactorConjugateGradient ||
+           (kind == LinearSolverKind::Automatic && System->dofCount <= AutomaticDirectLimit));
+}
+
+void CorotationalHexFem::updateNodeRotations()
+{
+  // R_n = polar(sum of the rotations of the active hexahedra at node n):
+  // neighbouring elements turn alike, so the mean is nearly a rotation and
+  // its polar factor costs one or two Newton steps.
+  LinearSystem& s = *System;
+  s.rotatesFactor = false;
+  if (!tracksFactorRotations())
+  {
+    s.nodeRotations.clear();
+    return;
+  }
+  const std::size_t freeNodes = static_cast<std::size_t>(s.dofCount / 3);
+  s.nodeRotations.assign(freeNodes, Eigen::Matrix3d::Zero());
+  for (const Element& element : Elements)
+  {
+    if (!element.active)
+    {
+      continue;
+    }
+    for (int node : element.nodes)
+    {
+      const int dof = s.dofOfNode[node];
+      if (dof >= 0)
+      {
+        s.nodeRotations[dof / 3] += element.rotation;
+      }
+    }
+  }
+  for (Eigen::Matrix3d& rotation : s.nodeRotations)
+  {
+    rotation = polarRotation(rotation);
+  }
+  updateRelativeRotations();
+}
+
+void CorotationalHexFem::updateRelativeRotations()
+{
+  LinearSystem& s = *System;
+  s.rotatesFactor = !s.nodeRotations.empty() && s.factorRotations.size() == s.nodeRotations.size();
+  if (!s.rotatesFactor)
+  {
+    return;
+  }
+  s.relativeRotations.resize(s.nodeRotations.size());
+  for (std::size_t n = 0; n < s.nodeRotations.size(); ++n)
+  {
+    s.relativeRotations[n].noalias() = s.nodeRotations[n] * s.factorRotations[n].transpose();
+  }
+}
+
+void CorotationalHexFem::applyStaleFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z)
+{
+  // z = Q A_f^-1 Q^T r, with A ~ Q A_f Q^T (Q block-diagonal, orthogonal).
+  LinearSystem& s = *System;
+  if (!s.rotatesFactor)
+  {
+    s.factor->solve(r, z);
+    return;
+  }
+  s.rotatedRight.resize(r.size());
+  for (std::size_t n = 0; n < s.relativeRotations.size(); ++n)
+  {
+    const Eigen::Index d = static_cast<Eigen::Index>(3 * n);
+    s.rotatedRight.segment<3>(d).noalias() = s.relativeRotations[n].transpose() * r.segment<3>(d);
+  }
+  s.factor->solve(s.rotatedRight, s.rotatedSolution);
+  z.resize(r.size());
+  for (std::size_t n = 0; n < s.relativeRotations.size(); ++n)
+  {
+    const Eigen::Index d = static_cast<Eigen::Index>(3 * n);
+    z.segment<3>(d).noalias() = s.relativeRotations[n] * s.rotatedSolution.segment<3>(d);
+  }
 }
 
 void CorotationalHexFem::invertNodalBlocks()
@@ -1239,7 +1344,7 @@ bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
     if (iteratePreconditioned(x,
           limit,
           iterations,
-          [&s](const Eigen::VectorXd& r, Eigen::VectorXd& z) { s.factor->solve(r, z); }))
+          [this](const Eigen::VectorXd& r, Eigen::VectorXd& z) { applyStaleFactor(r, z); }))
     {
       s.excessIterations += std::max(0, iterations - 1);
       if (background && (iterations > Settings.refactorizationIterations ||
@@ -1296,6 +1401,7 @@ SolverResult CorotationalHexFem::beginCoupledStep()
   const double beta = Settings.rayleighStiffness;
   // (M + h D + h^2 K) dv = h (f_ext - f_int - alpha M v - (beta + h) K v)
   assemble(h * beta + h * h, 1.0 + h * alpha, beta + h, s.forces);
+  updateNodeRotations();
   for (std::size_t n = 0; n < Positions.size(); ++n)
   {
     const int dof = s.dofOfNode[n];
@@ -1357,7 +1463,7 @@ bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
   {
     return false;
   }
-  s.factor->solve(r, z);
+  applyStaleFactor(r, z);
   return true;
 }
 

@@ -128,8 +128,14 @@ struct CorotationalHexFemSettings
   /// Unknowns from which StaleFactorConjugateGradient refactorizes on a
   /// worker thread instead of inside the step. Not negative. At the
   /// 1,000-hexahedra block (4,158 unknowns) a factorization costs ~22 ms of
-  /// CPU, several stale steps; at thesis sizes it costs less than 1 ms.
-  int backgroundRefactorizationThreshold = 3000;
+  /// CPU, several stale steps. At thesis sizes it costs 0.3-0.6 ms, 2-4
+  /// steps, and the steps that paid it set the simulator's 99th percentile:
+  /// refactorized in the step, 2-9 % of the replays' steps did (punch,
+  /// contouring, sheet), in the background none but the first and those
+  /// after cuts (`ThinTissueBench --suite simulator`, "factorizations
+  /// inside steps per 1,000 steps"; 99th percentile on a quiet machine
+  /// 0.52-1.43 ms against 0.44-1.05 ms).
+  int backgroundRefactorizationThreshold = 0;
   /// Deterministic background refresh: a refactorization started at step k
   /// (of step k's matrix) is swapped in at step k + lag, waiting for it if
   /// it has not finished -- never "whenever it is ready", so that replays
@@ -138,6 +144,12 @@ struct CorotationalHexFemSettings
   /// With a background refresh, the iterations a stale factor may take
   /// before the step gives it up and refactorizes synchronously. At least 1.
   int staleFactorIterationCap = 40;
+  /// The stale factor follows the tissue's rotations: it preconditions with
+  /// Q A_f^-1 Q^T, Q the per-node rotation since the factor's step, since
+  /// the co-rotational matrix turns with the material (A ~ Q A_f Q^T). A
+  /// factor then stays good through large rotations and is renewed for
+  /// what rotations do not explain (stretch, contacts).
+  bool rotateStaleFactor = true;
   /// Threads of the element assembly (rotations, forces, rotated
   /// stiffness): 0 for all cores (TBB's default), 1 for the calling thread
   /// only. Not negative. The results are the same bits for any count (the
@@ -387,6 +399,13 @@ private:
     int limit,
     int& iterations,
     const Preconditioner& precondition);
+  /// Whether this step's stale factor is turned with the nodal rotations.
+  bool tracksFactorRotations() const;
+  /// Nodal rotations of this step and their change since the factor's.
+  void updateNodeRotations();
+  void updateRelativeRotations();
+  /// z = P^-1 r with the (rotated) stale factor.
+  void applyStaleFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z);
   /// Inverts the 3x3 diagonal blocks of the current matrix.
   void invertNodalBlocks();
   /// z = (block diagonal of A)^-1 r.

@@ -227,6 +227,47 @@ TEST(SolverAtScale, BackgroundRefreshLeavesTheStepsToTheStaleFactor)
   EXPECT_GT(fem.synchronousFactorizationCount(), 1);
 }
 
+TEST(SolverAtScale, TheStaleFactorTurnsWithTheTissue)
+{
+  // A block turned rigidly by 60 degrees: its co-rotational matrix is the
+  // rest one turned, A = Q A_f Q^T, so the rest factor turned with the
+  // nodal rotations is exact (one iteration, no refactorization). Without
+  // the rotations the same factor no longer converges within
+  // refactorizationIterations and the step refactorizes.
+  const HexahedralMesh mesh = fixedBlock(6, 2, 2); // its fixed end turns with it
+  const Eigen::Matrix3d turn =
+    Eigen::AngleAxisd(M_PI / 3.0, Vector3(1.0, 2.0, 0.5).normalized()).toRotationMatrix();
+  std::vector<Vector3> turned = mesh.nodes;
+  for (Vector3& p : turned)
+  {
+    p = turn * p + Vector3(3.0, -1.0, 2.0);
+  }
+  for (const bool rotate : { true, false })
+  {
+    CorotationalHexFemSettings settings =
+      withSolver(LinearSolverKind::StaleFactorConjugateGradient);
+    settings.backgroundRefactorizationThreshold = std::numeric_limits<int>::max();
+    settings.rotateStaleFactor = rotate;
+    settings.conjugateGradientTolerance = 1e-10;
+    CorotationalHexFem fem(mesh, tissue(100.0), settings);
+    ASSERT_TRUE(fem.step().ok); // the factor of the rest state
+    ASSERT_EQ(fem.synchronousFactorizationCount(), 1);
+    fem.setPositions(turned);
+    fem.setExternalForce(mesh.nodeCount() - 1, Vector3(0.0, 0.3, -0.5));
+    const SolverResult result = fem.step();
+    ASSERT_TRUE(result.ok) << result.message;
+    if (rotate)
+    {
+      EXPECT_LE(result.iterations, 1);
+      EXPECT_EQ(fem.synchronousFactorizationCount(), 1);
+    }
+    else
+    {
+      EXPECT_EQ(fem.synchronousFactorizationCount(), 2) << result.iterations << " iterations";
+    }
+  }
+}
+
 TEST(SolverAtScale, ParallelAssemblyGivesTheSameBitsWithOneOrTwoThreads)
 {
   // The elements are coloured (no two of a colour share a node), each
