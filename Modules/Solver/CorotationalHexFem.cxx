@@ -66,10 +66,16 @@ void checkSettings(const CorotationalHexFemSettings& s)
   {
     problem << "assembly threads must not be negative (got " << s.assemblyThreads << ")";
   }
+  else if (s.multigridRebuildIterations < 1)
+  {
+    problem << "multigrid rebuild iterations must be at least 1 (got "
+            << s.multigridRebuildIterations << ")";
+  }
   if (problem.tellp() != 0)
   {
     throw InvalidInputError("co-rotational FEM settings: " + problem.str());
   }
+  checkSmoothedAggregationSettings(s.multigrid);
 }
 
 /// Eigen's CHOLMOD wrapper with a solve that reuses its workspace:
@@ -270,6 +276,11 @@ struct CorotationalHexFem::LinearSystem
   /// The threads of the assembly (Settings.assemblyThreads).
   std::unique_ptr<tbb::task_arena> arena;
   int arenaThreads = -1;
+  /// MultigridConjugateGradient's hierarchy, of the matrix of step
+  /// factorStep (its rotations in factorRotations, like a stale factor).
+  SmoothedAggregation multigrid;
+  bool multigridValid = false;
+  int multigridBuilds = 0;
 };
 
 CorotationalHexFem::CorotationalHexFem(const HexahedralMesh& mesh,
@@ -285,6 +296,7 @@ CorotationalHexFem::CorotationalHexFem(const HexahedralMesh& mesh,
 {
   mesh.checkConsistency();
   checkSettings(settings);
+  System->multigrid = SmoothedAggregation(settings.multigrid);
   checkMaterial(material, "co-rotational FEM of '" + mesh.name + "'");
   if (!mesh.fixedNodes.empty())
   {
@@ -422,6 +434,14 @@ void CorotationalHexFem::setSettings(const CorotationalHexFemSettings& settings)
       settings.factorOrdering != Settings.factorOrdering)
   {
     TopologyChanged = true; // the factor's analysis depends on them
+  }
+  const SmoothedAggregationSettings &next = settings.multigrid, &now = Settings.multigrid;
+  if (next.coarsestUnknowns != now.coarsestUnknowns || next.maximumLevels != now.maximumLevels ||
+      next.smootherDegree != now.smootherDegree ||
+      next.strengthThreshold != now.strengthThreshold || settings.solver != Settings.solver)
+  {
+    System->multigridValid = false;
+    System->multigrid = SmoothedAggregation(settings.multigrid);
   }
   Settings = settings;
 }
@@ -747,6 +767,7 @@ void CorotationalHexFem::prepareSystem()
   // this step); the factor is of another numbering.
   ++s.pattern;
   s.factorValid = false;
+  s.multigridValid = false;
   TopologyChanged = false;
 }
 
@@ -967,15 +988,14 @@ bool CorotationalHexFem::solveSystem(Eigen::VectorXd& solution,
 {
   LinearSystem& s = *System;
   iterations = 0;
-  LinearSolverKind kind = Settings.solver;
-  if (kind == LinearSolverKind::Automatic)
-  {
-    kind = s.dofCount <= AutomaticDirectLimit ? LinearSolverKind::StaleFactorConjugateGradient
-                                              : LinearSolverKind::ConjugateGradient;
-  }
+  const LinearSolverKind kind = effectiveSolver();
   if (kind == LinearSolverKind::StaleFactorConjugateGradient)
   {
     return solveWithStaleFactor(solution, iterations, message);
+  }
+  if (kind == LinearSolverKind::MultigridConjugateGradient)
+  {
+    return solveWithMultigrid(solution, iterations, message);
   }
   if (kind == LinearSolverKind::Cholmod)
   {
@@ -1106,9 +1126,7 @@ bool CorotationalHexFem::factorize(std::string& message)
 
 bool CorotationalHexFem::refreshesInBackground() const
 {
-  const LinearSolverKind kind = Settings.solver;
-  return (kind == LinearSolverKind::StaleFactorConjugateGradient ||
-           (kind == LinearSolverKind::Automatic && System->dofCount <= AutomaticDirectLimit)) &&
+  return effectiveSolver() == LinearSolverKind::StaleFactorConjugateGradient &&
          System->dofCount >= Settings.backgroundRefactorizationThreshold;
 }
 
@@ -1203,10 +1221,10 @@ bool CorotationalHexFem::iteratePreconditioned(Eigen::VectorXd& x,
 
 bool CorotationalHexFem::tracksFactorRotations() const
 {
-  const LinearSolverKind kind = Settings.solver;
+  const LinearSolverKind kind = effectiveSolver();
   return Settings.rotateStaleFactor && Settings.corotational &&
          (kind == LinearSolverKind::StaleFactorConjugateGradient ||
-           (kind == LinearSolverKind::Automatic && System->dofCount <= AutomaticDirectLimit));
+           kind == LinearSolverKind::MultigridConjugateGradient);
 }
 
 void CorotationalHexFem::updateNodeRotations()
@@ -1264,9 +1282,17 @@ void CorotationalHexFem::applyStaleFactor(const Eigen::VectorXd& r, Eigen::Vecto
 {
   // z = Q A_f^-1 Q^T r, with A ~ Q A_f Q^T (Q block-diagonal, orthogonal).
   LinearSystem& s = *System;
+  const bool multigrid = effectiveSolver() == LinearSolverKind::MultigridConjugateGradient;
   if (!s.rotatesFactor)
   {
-    s.factor->solve(r, z);
+    if (multigrid)
+    {
+      s.multigrid.apply(r, z);
+    }
+    else
+    {
+      s.factor->solve(r, z);
+    }
     return;
   }
   s.rotatedRight.resize(r.size());
@@ -1275,7 +1301,14 @@ void CorotationalHexFem::applyStaleFactor(const Eigen::VectorXd& r, Eigen::Vecto
     const Eigen::Index d = static_cast<Eigen::Index>(3 * n);
     s.rotatedRight.segment<3>(d).noalias() = s.relativeRotations[n].transpose() * r.segment<3>(d);
   }
-  s.factor->solve(s.rotatedRight, s.rotatedSolution);
+  if (multigrid)
+  {
+    s.multigrid.apply(s.rotatedRight, s.rotatedSolution);
+  }
+  else
+  {
+    s.factor->solve(s.rotatedRight, s.rotatedSolution);
+  }
   z.resize(r.size());
   for (std::size_t n = 0; n < s.relativeRotations.size(); ++n)
   {
@@ -1365,6 +1398,77 @@ bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
   return false;
 }
 
+LinearSolverKind CorotationalHexFem::effectiveSolver() const
+{
+  if (Settings.solver != LinearSolverKind::Automatic)
+  {
+    return Settings.solver;
+  }
+  return System->dofCount <= AutomaticDirectLimit ? LinearSolverKind::StaleFactorConjugateGradient
+                                                  : LinearSolverKind::ConjugateGradient;
+}
+
+bool CorotationalHexFem::buildMultigrid(std::string& message)
+{
+  // The rigid motions of the free nodes at their current positions: the
+  // near-null space of this step's (rotated) stiffness.
+  LinearSystem& s = *System;
+  SmoothedAggregation::Coordinates nodes(s.dofCount / 3, 3);
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    if (s.dofOfNode[n] >= 0)
+    {
+      nodes.row(s.dofOfNode[n] / 3) = Positions[n].transpose();
+    }
+  }
+  ++s.multigridBuilds;
+  s.multigridValid = s.multigrid.build(s.matrix, nodes, message);
+  s.factorStep = s.stepIndex;
+  s.factorRotations = s.nodeRotations;
+  s.rotatesFactor = false; // the hierarchy is of this step's matrix
+  return s.multigridValid;
+}
+
+bool CorotationalHexFem::solveWithMultigrid(Eigen::VectorXd& x,
+  int& iterations,
+  std::string& message)
+{
+  // Conjugate gradients preconditioned by the (rotated) hierarchy of an
+  // earlier step. A solve that needs many iterations marks it for a
+  // rebuild at the next step, so that the rebuild happens at a fixed step
+  // (replays are exact); one that does not converge rebuilds at once.
+  LinearSystem& s = *System;
+  const auto precondition = [this](const Eigen::VectorXd& r, Eigen::VectorXd& z)
+  { applyStaleFactor(r, z); };
+  for (int attempt = 0; attempt < 2; ++attempt)
+  {
+    const bool fresh = !s.multigridValid;
+    if (fresh && !buildMultigrid(message))
+    {
+      return false;
+    }
+    if (iteratePreconditioned(x, Settings.conjugateGradientMaxIterations, iterations, precondition))
+    {
+      s.multigridValid = iterations <= Settings.multigridRebuildIterations;
+      if (!x.allFinite())
+      {
+        message = "the solution is not finite (NaN or infinity)";
+        return false;
+      }
+      return true;
+    }
+    if (fresh)
+    {
+      break;
+    }
+    s.multigridValid = false;
+  }
+  message = "multigrid-preconditioned conjugate gradient did not converge in " +
+            std::to_string(iterations) + " iterations (relative residual " +
+            std::to_string(s.residual.norm() / s.rhs.norm()) + ")";
+  return false;
+}
+
 SolverResult CorotationalHexFem::step()
 {
   SolverResult result = beginCoupledStep();
@@ -1450,13 +1554,20 @@ bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
   std::string& message)
 {
   LinearSystem& s = *System;
-  const bool jacobi =
-    Settings.solver == LinearSolverKind::ConjugateGradient ||
-    (Settings.solver == LinearSolverKind::Automatic && s.dofCount > AutomaticDirectLimit);
-  if (jacobi)
+  const LinearSolverKind kind = effectiveSolver();
+  if (kind == LinearSolverKind::ConjugateGradient)
   {
     invertNodalBlocks(); // once per matrix
     applyNodalBlockJacobi(r, z);
+    return true;
+  }
+  if (kind == LinearSolverKind::MultigridConjugateGradient)
+  {
+    if (!s.multigridValid && !buildMultigrid(message))
+    {
+      return false;
+    }
+    applyStaleFactor(r, z);
     return true;
   }
   if (!s.factorValid && !factorize(message))
@@ -1470,11 +1581,17 @@ bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
 void CorotationalHexFem::invalidateFactor()
 {
   System->factorValid = false;
+  System->multigridValid = false;
 }
 
 void CorotationalHexFem::chargeStaleIterations(int iterations)
 {
   LinearSystem& s = *System;
+  if (effectiveSolver() == LinearSolverKind::MultigridConjugateGradient)
+  {
+    s.multigridValid = s.multigridValid && iterations <= Settings.multigridRebuildIterations;
+    return;
+  }
   s.excessIterations += std::max(0, iterations - 1);
   if (s.excessIterations > Settings.staleFactorIterationBudget)
   {
@@ -1606,6 +1723,11 @@ int CorotationalHexFem::factorizationCount() const
 int CorotationalHexFem::synchronousFactorizationCount() const
 {
   return System->synchronousFactorizations;
+}
+
+int CorotationalHexFem::multigridBuildCount() const
+{
+  return System->multigridBuilds;
 }
 
 void CorotationalHexFem::setBackgroundFactorizationHook(std::function<void()> hook)

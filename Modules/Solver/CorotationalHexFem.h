@@ -17,6 +17,7 @@
 
 #include "HexahedralMesh.h"
 #include "HexahedronElement.h"
+#include "SmoothedAggregation.h"
 #include "ThinTissueSolverModule.h"
 
 #include <Eigen/Core>
@@ -47,6 +48,15 @@ enum class LinearSolverKind
   /// `backgroundRefactorizationThreshold` unknowns the refactorization runs
   /// on a worker thread while the steps go on (see the settings).
   StaleFactorConjugateGradient,
+  /// Conjugate gradient preconditioned by one V-cycle of a smoothed-
+  /// aggregation multigrid (SmoothedAggregation: rigid-motion near-null
+  /// space, Chebyshev smoothing, CHOLMOD-free). The hierarchy is built from
+  /// an earlier step's matrix and turned with the nodal rotations like the
+  /// stale factor (Q M_f^-1 Q^T); it is rebuilt at the step after a solve
+  /// needed more than `multigridRebuildIterations`, and at once after a
+  /// topology change or when a solve does not converge. For meshes whose
+  /// factor is too big or too slow to refresh.
+  MultigridConjugateGradient,
   /// StaleFactorConjugateGradient up to AutomaticDirectLimit degrees of
   /// freedom, block-Jacobi conjugate gradients beyond, where factors grow
   /// too big to refresh. The default.
@@ -150,6 +160,12 @@ struct CorotationalHexFemSettings
   /// factor then stays good through large rotations and is renewed for
   /// what rotations do not explain (stretch, contacts).
   bool rotateStaleFactor = true;
+  /// The hierarchy of MultigridConjugateGradient (checked like the rest).
+  SmoothedAggregationSettings multigrid;
+  /// MultigridConjugateGradient rebuilds its hierarchy (from that step's
+  /// matrix, at the start of the next solve: deterministic) after a solve
+  /// that needed more iterations than this. At least 1.
+  int multigridRebuildIterations = 40;
   /// Threads of the element assembly (rotations, forces, rotated
   /// stiffness): 0 for all cores (TBB's default), 1 for the calling thread
   /// only. Not negative. The results are the same bits for any count (the
@@ -313,6 +329,8 @@ public:
   /// Of those, the ones done inside a step (the first, after a topology
   /// change, and when a stale factor no longer converged).
   int synchronousFactorizationCount() const;
+  /// Multigrid hierarchies built so far (MultigridConjugateGradient).
+  int multigridBuildCount() const;
   /// Called on the worker thread before each background factorization: a
   /// test delays it to check that results do not depend on thread timing.
   void setBackgroundFactorizationHook(std::function<void()> hook);
@@ -404,8 +422,13 @@ private:
   /// Nodal rotations of this step and their change since the factor's.
   void updateNodeRotations();
   void updateRelativeRotations();
-  /// z = P^-1 r with the (rotated) stale factor.
+  /// z = P^-1 r with the (rotated) stale factor or multigrid hierarchy.
   void applyStaleFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  /// The solver Automatic stands for at this size, else Settings.solver.
+  LinearSolverKind effectiveSolver() const;
+  /// Builds the multigrid hierarchy of the current matrix.
+  bool buildMultigrid(std::string& message);
+  bool solveWithMultigrid(Eigen::VectorXd& solution, int& iterations, std::string& message);
   /// Inverts the 3x3 diagonal blocks of the current matrix.
   void invertNodalBlocks();
   /// z = (block diagonal of A)^-1 r.
