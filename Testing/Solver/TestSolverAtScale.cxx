@@ -142,6 +142,11 @@ void expectAllSolversAgree(const HexahedralMesh& mesh, const LinearMaterial& mat
   background.backgroundRefactorizationThreshold = 0;
   variants.emplace_back("stale factor refreshed in the background", background);
   variants.emplace_back("automatic", withSolver(LinearSolverKind::Automatic));
+  variants.emplace_back("multigrid", withSolver(LinearSolverKind::MultigridConjugateGradient));
+  CorotationalHexFemSettings levels = withSolver(LinearSolverKind::MultigridConjugateGradient);
+  levels.multigrid.coarsestUnknowns = 30; // several levels even on the meniscus
+  levels.multigridRebuildIterations = 1;  // and a rebuild every step
+  variants.emplace_back("multigrid, small coarsest level, rebuilt every step", levels);
   for (const auto& [name, settings] : variants)
   {
     const std::vector<Vector3> positions = pushAndStep(mesh, material, settings, steps);
@@ -379,6 +384,46 @@ TEST(SolverAtScale, ACutDuringABackgroundRefreshReplaysAndMovesAsRefactorizingEv
   }
   ASSERT_GT(moved, 0.0);
   EXPECT_LT(largestDifference(prompt, exact), 1e-6 * moved);
+}
+
+TEST(SolverAtScale, ACutRebuildsTheMultigridHierarchyAndMovesAsRefactorizingEveryStep)
+{
+  // A cut (new nodes) and a removed hexahedron renumber the system: the
+  // hierarchy of the old numbering is dropped and rebuilt in the next step,
+  // which converges to the motion a factorization every step gives.
+  CorotationalHexFemSettings multigrid = withSolver(LinearSolverKind::MultigridConjugateGradient);
+  multigrid.multigrid.coarsestUnknowns = 300; // three levels on the 1,000 block
+  const HexahedralMesh mesh = fixedBlock(20, 10, 5);
+  auto cutAndStep = [&](const CorotationalHexFemSettings& settings, bool isMultigrid)
+  {
+    CorotationalHexFem fem(mesh, tissue(10.0), settings);
+    fem.setExternalForce(mesh.nodeCount() - 1, Vector3(0.0, 0.2, -0.5));
+    for (int k = 0; k < 5; ++k)
+    {
+      EXPECT_TRUE(fem.step().ok);
+    }
+    const int builds = fem.multigridBuildCount();
+    EXPECT_EQ(builds >= 1, isMultigrid);
+    cutBlock(fem, 10.0, 6.0, true);
+    fem.removeHexahedron(fem.hexahedronCount() - 1);
+    for (int k = 0; k < 12; ++k)
+    {
+      const SolverResult result = fem.step();
+      EXPECT_TRUE(result.ok) << result.message;
+      if (isMultigrid)
+      {
+        EXPECT_LT(result.iterations, 100);
+        EXPECT_EQ(fem.multigridBuildCount() > builds, true) << "step " << k;
+      }
+    }
+    EXPECT_GT(fem.nodeCount(), mesh.nodeCount());
+    return fem.positions();
+  };
+  const std::vector<Vector3> expected = cutAndStep(withSolver(LinearSolverKind::Cholmod), false);
+  const double moved = largestDisplacement(
+    mesh, std::vector<Vector3>(expected.begin(), expected.begin() + mesh.nodeCount()));
+  ASSERT_GT(moved, 0.0);
+  EXPECT_LT(largestDifference(cutAndStep(multigrid, true), expected), 1e-6 * moved);
 }
 
 TEST(SolverAtScale, ANodeCopyIsItsSourcesTwinAndACutOfCopiesMovesLikeOneOfNewNodes)
