@@ -488,9 +488,9 @@ THINTISSUE_BENCHMARK_SUITE(femSuite,
   for (const NamedSolver& solver : allSolvers)
   {
     const std::string label = hundredThousand.name + ", " + solver.name;
+    // Automatic is the multigrid here (beyond AutomaticDirectLimit).
     const bool iterative = solver.kind == LinearSolverKind::ConjugateGradient ||
-                           solver.kind == LinearSolverKind::MultigridConjugateGradient ||
-                           solver.kind == LinearSolverKind::Automatic;
+                           solver.kind == LinearSolverKind::MultigridConjugateGradient;
     if (context.quick || !iterative || !wanted(label))
     {
       continue;

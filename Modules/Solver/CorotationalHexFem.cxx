@@ -1405,7 +1405,7 @@ LinearSolverKind CorotationalHexFem::effectiveSolver() const
     return Settings.solver;
   }
   return System->dofCount <= AutomaticDirectLimit ? LinearSolverKind::StaleFactorConjugateGradient
-                                                  : LinearSolverKind::ConjugateGradient;
+                                                  : LinearSolverKind::MultigridConjugateGradient;
 }
 
 bool CorotationalHexFem::buildMultigrid(std::string& message)

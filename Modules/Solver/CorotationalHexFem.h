@@ -58,20 +58,22 @@ enum class LinearSolverKind
   /// factor is too big or too slow to refresh.
   MultigridConjugateGradient,
   /// StaleFactorConjugateGradient up to AutomaticDirectLimit degrees of
-  /// freedom, block-Jacobi conjugate gradients beyond, where factors grow
-  /// too big to refresh. The default.
+  /// freedom, MultigridConjugateGradient beyond, where factors grow too big
+  /// to refresh. The default.
   Automatic
 };
 
-/// Degrees of freedom up to which Automatic factorizes. Measured (issue 20,
-/// `ThinTissueBench --suite fem` and CPU time per step, OpenBLAS, one BLAS
-/// thread): the 10,000-hexahedra block (35,670 unknowns) costs 0.86 s of CPU
-/// per step with the stale factor refreshed in the background (23
-/// iterations) against 1.08 s with block-Jacobi CG (887 iterations); at
-/// thesis sizes and 1,000 hexahedra the stale factor wins by far (3 against
-/// 428 iterations). Beyond ~50,000 unknowns a factor's memory and refresh
-/// time (several seconds) outgrow the steps it would serve.
-constexpr int AutomaticDirectLimit = 50000;
+/// Degrees of freedom up to which Automatic factorizes (stale factor), with
+/// multigrid CG beyond. Measured (issue 20, `ThinTissueBench --suite fem`,
+/// 2 cores shared with other work, OpenBLAS on one thread), stale factor
+/// against multigrid, step time (stepping thread's CPU): block 40x20x5
+/// (14,500 unknowns) 56 (46) ms, 4 iterations, against 316 (304) ms, 36;
+/// block 40x25x7 (25,272) 323 (214, plus the background refreshes) ms, 12,
+/// against 251 (243) ms, 21: about even; the 10,000 block (35,670) 664 ms,
+/// 23, against 400-460 ms, 19; block-Jacobi CG 1,963 ms, 891. The
+/// 100,000 block (320K unknowns): multigrid 5.1 s, 21 iterations, where
+/// block-Jacobi does not converge in 1,000 iterations.
+constexpr int AutomaticDirectLimit = 25000;
 
 /// Fill-reducing ordering of the CHOLMOD factor.
 enum class FactorOrdering
