@@ -162,6 +162,8 @@ TEST(SmoothedAggregation, ConjugateGradientsNeedFarFewerIterationsThanWithBlockJ
   settings.solver = LinearSolverKind::MultigridConjugateGradient;
   settings.multigrid.coarsestUnknowns = 200; // a real hierarchy, not a direct solve
   const int multigrid = medianIterations(mesh, settings);
+  RecordProperty("multigridIterations", multigrid);
+  RecordProperty("blockJacobiIterations", jacobi);
   EXPECT_GT(multigrid, 1);
   EXPECT_LT(4 * multigrid, jacobi) << "multigrid " << multigrid << ", block-Jacobi " << jacobi;
 }
