@@ -32,6 +32,8 @@ thintissue::LinearSolverKind linearSolverKind(int solver)
       return thintissue::LinearSolverKind::ConjugateGradient;
     case vtkCorotationalHexFemFilter::STALE_FACTOR_CONJUGATE_GRADIENT:
       return thintissue::LinearSolverKind::StaleFactorConjugateGradient;
+    case vtkCorotationalHexFemFilter::MULTIGRID_CONJUGATE_GRADIENT:
+      return thintissue::LinearSolverKind::MultigridConjugateGradient;
     default:
       return thintissue::LinearSolverKind::Automatic;
   }
@@ -184,6 +186,8 @@ const char* vtkCorotationalHexFemFilter::GetLinearSolverAsString()
       return "ConjugateGradient";
     case STALE_FACTOR_CONJUGATE_GRADIENT:
       return "StaleFactorConjugateGradient";
+    case MULTIGRID_CONJUGATE_GRADIENT:
+      return "MultigridConjugateGradient";
     default:
       return "Automatic";
   }

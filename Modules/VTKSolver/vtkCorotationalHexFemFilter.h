@@ -44,7 +44,8 @@ public:
     CHOLMOD = 0,
     CONJUGATE_GRADIENT = 1,
     STALE_FACTOR_CONJUGATE_GRADIENT = 2,
-    AUTOMATIC = 3
+    AUTOMATIC = 3,
+    MULTIGRID_CONJUGATE_GRADIENT = 4
   };
 
   ///@{
@@ -102,14 +103,19 @@ public:
 
   ///@{
   /// Linear solver: CHOLMOD, CONJUGATE_GRADIENT,
-  /// STALE_FACTOR_CONJUGATE_GRADIENT or AUTOMATIC (the default).
-  vtkSetClampMacro(LinearSolver, int, CHOLMOD, AUTOMATIC);
+  /// STALE_FACTOR_CONJUGATE_GRADIENT, MULTIGRID_CONJUGATE_GRADIENT (huge
+  /// meshes) or AUTOMATIC (the default).
+  vtkSetClampMacro(LinearSolver, int, CHOLMOD, MULTIGRID_CONJUGATE_GRADIENT);
   vtkGetMacro(LinearSolver, int);
   void SetLinearSolverToCholmod() { this->SetLinearSolver(CHOLMOD); }
   void SetLinearSolverToConjugateGradient() { this->SetLinearSolver(CONJUGATE_GRADIENT); }
   void SetLinearSolverToStaleFactorConjugateGradient()
   {
     this->SetLinearSolver(STALE_FACTOR_CONJUGATE_GRADIENT);
+  }
+  void SetLinearSolverToMultigridConjugateGradient()
+  {
+    this->SetLinearSolver(MULTIGRID_CONJUGATE_GRADIENT);
   }
   void SetLinearSolverToAutomatic() { this->SetLinearSolver(AUTOMATIC); }
   const char* GetLinearSolverAsString();
