@@ -5,6 +5,9 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -40,6 +43,44 @@ void checkSmoothedAggregationSettings(const SmoothedAggregationSettings& s)
       std::to_string(s.smootherDegree) + ", " + std::to_string(s.strengthThreshold) + ")");
   }
 }
+
+namespace
+{
+
+/// Stored entries from which a level's products run on several threads.
+/// Each row's sum is taken by one thread in the row's order, the order of
+/// Eigen's serial product: the same bits for any thread count.
+constexpr Eigen::Index ParallelProductEntries = 200000;
+
+/// y = m x (y sized here), rows in parallel on large levels.
+void multiply(const RowMatrix& m, const Eigen::VectorXd& x, Eigen::VectorXd& y)
+{
+  y.resize(m.rows());
+  const auto rows = [&](Eigen::Index begin, Eigen::Index end)
+  {
+    const int* starts = m.outerIndexPtr();
+    const int* columns = m.innerIndexPtr();
+    const double* values = m.valuePtr();
+    for (Eigen::Index i = begin; i < end; ++i)
+    {
+      double sum = 0.0;
+      for (int k = starts[i]; k < starts[i + 1]; ++k)
+      {
+        sum += values[k] * x[columns[k]];
+      }
+      y[i] = sum;
+    }
+  };
+  if (m.nonZeros() < ParallelProductEntries)
+  {
+    rows(0, m.rows());
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, m.rows(), 512),
+    [&](const tbb::blocked_range<Eigen::Index>& range) { rows(range.begin(), range.end()); });
+}
+
+} // namespace
 
 struct SmoothedAggregation::Level
 {
@@ -148,7 +189,7 @@ void SmoothedAggregation::Level::estimateSpectrum()
   for (int iteration = 0; iteration < 20; ++iteration)
   {
     v /= v.norm();
-    work.noalias() = matrix * v;
+    multiply(matrix, v, work);
     applyBlockInverse(work, v);
     estimate = v.norm();
   }
@@ -224,7 +265,7 @@ void SmoothedAggregation::Level::smooth(int degree, bool fromZero)
   }
   else
   {
-    work.noalias() = matrix * x;
+    multiply(matrix, x, work);
     residual = b - work;
   }
   applyBlockInverse(residual, direction);
@@ -243,7 +284,7 @@ void SmoothedAggregation::Level::smooth(int degree, bool fromZero)
     {
       break;
     }
-    work.noalias() = matrix * direction;
+    multiply(matrix, direction, work);
     residual -= work;
     const double next = 1.0 / (2.0 * sigma - rho);
     applyBlockInverse(residual, work);
@@ -530,9 +571,9 @@ void SmoothedAggregation::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z)
   {
     Level& level = levels[l];
     level.smooth(Settings.smootherDegree, true);
-    level.work.noalias() = level.matrix * level.x;
+    multiply(level.matrix, level.x, level.work);
     level.residual = level.b - level.work;
-    levels[l + 1].b.noalias() = level.restrictor * level.residual;
+    multiply(level.restrictor, level.residual, levels[l + 1].b);
   }
   Level& coarsest = levels[last];
   auto& factor = Levels->coarsest;
@@ -543,7 +584,8 @@ void SmoothedAggregation::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z)
   for (int l = last - 1; l >= 0; --l) // up: coarse correction, post-smoothing
   {
     Level& level = levels[l];
-    level.x.noalias() += level.prolongator * levels[l + 1].x;
+    multiply(level.prolongator, levels[l + 1].x, level.work);
+    level.x += level.work;
     level.smooth(Settings.smootherDegree, false);
   }
   z = levels[0].x;
