@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <tbb/task_arena.h>
+
+#include <cmath>
 #include <random>
 
 using namespace thintissue;
@@ -150,6 +153,28 @@ TEST(SmoothedAggregation, TheVCycleIsSymmetricPositiveDefinite)
   multigrid.apply(x, first);
   multigrid.apply(x, again);
   EXPECT_EQ(first, again);
+}
+
+TEST(SmoothedAggregation, TheVCycleGivesTheSameBitsOnOneOrTwoThreads)
+{
+  // A finest level beyond the parallel products' threshold (200,000
+  // stored entries): its rows are summed by one thread each, in order.
+  SmoothedAggregation::Coordinates nodes;
+  const SparseMatrix upper = restSystem(fixedBlock(20, 10, 5), nodes);
+  ASSERT_GT(2 * upper.nonZeros() - upper.rows(), 200000);
+  SmoothedAggregation multigrid;
+  std::string message;
+  ASSERT_TRUE(multigrid.build(upper, nodes, message)) << message;
+  Eigen::VectorXd r(upper.rows());
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+  {
+    r[i] = std::sin(0.37 * static_cast<double>(i));
+  }
+  Eigen::VectorXd serial, parallel;
+  tbb::task_arena(1).execute([&] { multigrid.apply(r, serial); });
+  tbb::task_arena(2).execute([&] { multigrid.apply(r, parallel); });
+  ASSERT_GT(serial.norm(), 0.0);
+  EXPECT_EQ(serial, parallel);
 }
 
 TEST(SmoothedAggregation, ConjugateGradientsNeedFarFewerIterationsThanWithBlockJacobi)
