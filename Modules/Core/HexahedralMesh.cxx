@@ -18,6 +18,22 @@ BoundingBox HexahedralMesh::boundingBox() const
   return boundingBoxOf(nodes);
 }
 
+void HexahedralMesh::fixLowestNodes(int axis, double tolerance)
+{
+  if (axis < 0 || axis > 2 || !(tolerance >= 0.0))
+  {
+    throw InvalidInputError("hexahedral mesh '" + name + "': nodes to fix need an axis 0-2 " +
+                            "and a tolerance of at least 0 (got " + std::to_string(axis) + ", " +
+                            std::to_string(tolerance) + ")");
+  }
+  const double lowest = boundingBox().min()[axis];
+  fixedNodes.assign(nodes.size(), 0);
+  for (std::size_t n = 0; n < nodes.size(); ++n)
+  {
+    fixedNodes[n] = nodes[n][axis] <= lowest + tolerance ? 1 : 0;
+  }
+}
+
 Vector3 HexahedralMesh::hexahedronCentre(std::size_t h) const
 {
   Vector3 centre = Vector3::Zero();

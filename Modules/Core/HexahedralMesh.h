@@ -35,6 +35,10 @@ public:
   std::size_t fixedNodeCount() const;
   BoundingBox boundingBox() const;
   Vector3 hexahedronCentre(std::size_t h) const;
+  /// Fixes the nodes within `tolerance` of the smallest coordinate along
+  /// `axis` (0, 1, 2: a clamped end) and frees the others. Throws
+  /// InvalidInputError on another axis or a negative tolerance.
+  void fixLowestNodes(int axis, double tolerance);
 
   /// Local corner coordinates (0 or 1 per axis) of VTK hexahedron corner k.
   static std::array<int, 3> cornerOffset(int k);

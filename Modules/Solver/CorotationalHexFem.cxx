@@ -1,11 +1,10 @@
 #include "CorotationalHexFem.h"
 
-#include <Eigen/Geometry>
-
 #include "LinearAlgebraLibrary.h"
 #include "ThinTissueError.h"
 
 #include <Eigen/CholmodSupport>
+#include <Eigen/Geometry>
 #include <Eigen/Sparse>
 
 #include <tbb/blocked_range.h>
@@ -1291,19 +1290,24 @@ void CorotationalHexFem::updateRelativeRotations()
 
 void CorotationalHexFem::applyStaleFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z)
 {
-  // z = Q A_f^-1 Q^T r, with A ~ Q A_f Q^T (Q block-diagonal, orthogonal).
+  // z = Q A_f^-1 Q^T r, with A ~ Q A_f Q^T (Q block-diagonal, orthogonal);
+  // A_f^-1 is the stale factor's solve or the multigrid hierarchy's V-cycle.
   LinearSystem& s = *System;
   const bool multigrid = effectiveSolver() == LinearSolverKind::MultigridConjugateGradient;
-  if (!s.rotatesFactor)
+  const auto solveStale = [&](const Eigen::VectorXd& right, Eigen::VectorXd& solution)
   {
     if (multigrid)
     {
-      s.multigrid.apply(r, z);
+      s.multigrid.apply(right, solution);
     }
     else
     {
-      s.factor->solve(r, z);
+      s.factor->solve(right, solution);
     }
+  };
+  if (!s.rotatesFactor)
+  {
+    solveStale(r, z);
     return;
   }
   s.rotatedRight.resize(r.size());
@@ -1312,14 +1316,7 @@ void CorotationalHexFem::applyStaleFactor(const Eigen::VectorXd& r, Eigen::Vecto
     const Eigen::Index d = static_cast<Eigen::Index>(3 * n);
     s.rotatedRight.segment<3>(d).noalias() = s.relativeRotations[n].transpose() * r.segment<3>(d);
   }
-  if (multigrid)
-  {
-    s.multigrid.apply(s.rotatedRight, s.rotatedSolution);
-  }
-  else
-  {
-    s.factor->solve(s.rotatedRight, s.rotatedSolution);
-  }
+  solveStale(s.rotatedRight, s.rotatedSolution);
   z.resize(r.size());
   for (std::size_t n = 0; n < s.relativeRotations.size(); ++n)
   {

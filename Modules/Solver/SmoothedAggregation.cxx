@@ -29,23 +29,6 @@ Eigen::Map<const ColumnMatrix> symmetricColumnView(const RowMatrix& a)
   return Eigen::Map<const ColumnMatrix>(
     a.rows(), a.cols(), a.nonZeros(), a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr());
 }
-} // namespace
-
-void checkSmoothedAggregationSettings(const SmoothedAggregationSettings& s)
-{
-  if (s.coarsestUnknowns < 1 || s.maximumLevels < 1 || s.smootherDegree < 1 ||
-      !(s.strengthThreshold >= 0.0 && s.strengthThreshold < 1.0))
-  {
-    throw InvalidInputError(
-      "smoothed aggregation: coarsest unknowns, levels and smoother degree "
-      "must be at least 1 and the strength threshold in [0, 1) (got " +
-      std::to_string(s.coarsestUnknowns) + ", " + std::to_string(s.maximumLevels) + ", " +
-      std::to_string(s.smootherDegree) + ", " + std::to_string(s.strengthThreshold) + ")");
-  }
-}
-
-namespace
-{
 
 /// Stored entries from which a level's products run on several threads.
 /// Each row's sum is taken by one thread in the row's order, the order of
@@ -79,8 +62,20 @@ void multiply(const RowMatrix& m, const Eigen::VectorXd& x, Eigen::VectorXd& y)
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, m.rows(), 512),
     [&](const tbb::blocked_range<Eigen::Index>& range) { rows(range.begin(), range.end()); });
 }
-
 } // namespace
+
+void checkSmoothedAggregationSettings(const SmoothedAggregationSettings& s)
+{
+  if (s.coarsestUnknowns < 1 || s.maximumLevels < 1 || s.smootherDegree < 1 ||
+      !(s.strengthThreshold >= 0.0 && s.strengthThreshold < 1.0))
+  {
+    throw InvalidInputError(
+      "smoothed aggregation: coarsest unknowns, levels and smoother degree "
+      "must be at least 1 and the strength threshold in [0, 1) (got " +
+      std::to_string(s.coarsestUnknowns) + ", " + std::to_string(s.maximumLevels) + ", " +
+      std::to_string(s.smootherDegree) + ", " + std::to_string(s.strengthThreshold) + ")");
+  }
+}
 
 struct SmoothedAggregation::Level
 {

@@ -23,6 +23,22 @@ TEST(HexahedralMesh, RegularGridOfTheThesisSheet)
   }
 }
 
+TEST(HexahedralMesh, FixLowestNodesClampsOneEnd)
+{
+  HexahedralMesh mesh =
+    HexahedralMesh::makeRegularGrid(Vector3(-2.0, 1.0, 0.5), Vector3(0.5, 1.0, 2.0), 4, 2, 1);
+  mesh.fixLowestNodes(1, 1e-9); // the face y = 1: 5 x 2 nodes
+  EXPECT_EQ(mesh.fixedNodeCount(), 10u);
+  for (std::size_t n = 0; n < mesh.nodeCount(); ++n)
+  {
+    EXPECT_EQ(mesh.isFixed(n), mesh.nodes[n].y() < 1.0 + 1e-9) << n;
+  }
+  mesh.fixLowestNodes(0, 0.6); // x = -2 and x = -1.5 now; y = 1 freed
+  EXPECT_EQ(mesh.fixedNodeCount(), 12u);
+  EXPECT_THROW(mesh.fixLowestNodes(3, 0.0), InvalidInputError);
+  EXPECT_THROW(mesh.fixLowestNodes(0, -1.0), InvalidInputError);
+}
+
 TEST(HexahedralMesh, ConsistencyErrors)
 {
   HexahedralMesh grid = HexahedralMesh::makeRegularGrid(Vector3::Zero(), Vector3::Ones(), 1, 1, 1);

@@ -5,6 +5,7 @@
 #include "CorotationalHexFem.h"
 #include "LinearAlgebraLibrary.h"
 #include "MeniscusModel.h"
+#include "SolverTestSupport.h"
 #include "ThinTissueError.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +18,8 @@
 #include <thread>
 
 using namespace thintissue;
+using thintissue::testing::expectRefusedNaming;
+using thintissue::testing::fixedBlock;
 
 #if defined(__SANITIZE_THREAD__)
 // CHOLMOD runs OpenMP regions in libgomp, which is not instrumented:
@@ -31,20 +34,6 @@ extern "C" const char* __tsan_default_suppressions()
 
 namespace
 {
-
-/// A block of nx x ny x nz hexahedra of 1 mm, fixed at x = 0 (the
-/// benchmark's blocks).
-HexahedralMesh fixedBlock(int nx, int ny, int nz)
-{
-  HexahedralMesh mesh =
-    HexahedralMesh::makeRegularGrid(Vector3::Zero(), Vector3::Ones(), nx, ny, nz);
-  mesh.fixedNodes.assign(mesh.nodeCount(), 0);
-  for (std::size_t n = 0; n < mesh.nodeCount(); ++n)
-  {
-    mesh.fixedNodes[n] = mesh.nodes[n].x() < 1e-12 ? 1 : 0;
-  }
-  return mesh;
-}
 
 /// Soft tissue in mm, N, s, `stiffer` times stiffer than 0.5 MPa: the
 /// tests' loads bend the blocks by a few millimetres.
@@ -468,17 +457,7 @@ TEST(SolverAtScale, BadSettingsAreRefusedClearly)
 {
   const HexahedralMesh mesh = fixedBlock(2, 1, 1);
   auto expectError = [&](const CorotationalHexFemSettings& settings, const std::string& word)
-  {
-    try
-    {
-      CorotationalHexFem fem(mesh, tissue(100.0), settings);
-      ADD_FAILURE() << "no error for " << word;
-    }
-    catch (const InvalidInputError& error)
-    {
-      EXPECT_NE(std::string(error.what()).find(word), std::string::npos) << error.what();
-    }
-  };
+  { expectRefusedNaming([&] { CorotationalHexFem fem(mesh, tissue(100.0), settings); }, word); };
   CorotationalHexFemSettings settings;
   settings.staleFactorIterationCap = 0;
   expectError(settings, "iteration cap");

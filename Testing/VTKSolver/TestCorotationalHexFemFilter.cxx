@@ -78,6 +78,17 @@ vtkSmartPointer<vtkUnstructuredGrid> cantilever(int nx, int nyz)
   return grid;
 }
 
+/// 20 dynamic steps of `rest` swinging down under a light gravity.
+void swingUnderGravity(vtkCorotationalHexFemFilter* fem, vtkUnstructuredGrid* rest)
+{
+  fem->SetInputData(rest);
+  fem->SetYoungModulus(1.0e5);
+  fem->SetDensity(1.0);
+  fem->SetTimeStep(0.01);
+  fem->SetNumberOfSteps(20);
+  fem->SetGravity(0.0, 0.0, -0.001);
+}
+
 double meanTipDeflection(vtkUnstructuredGrid* rest, vtkUnstructuredGrid* deformed)
 {
   double sum = 0.0;
@@ -164,12 +175,7 @@ TEST(vtkCorotationalHexFemFilter, DynamicStepsMoveDownAndReportDisplacement)
 {
   auto rest = cantilever(20, 2);
   vtkNew<vtkCorotationalHexFemFilter> fem;
-  fem->SetInputData(rest);
-  fem->SetYoungModulus(1.0e5);
-  fem->SetDensity(1.0);
-  fem->SetTimeStep(0.01);
-  fem->SetNumberOfSteps(20);
-  fem->SetGravity(0.0, 0.0, -0.001);
+  swingUnderGravity(fem, rest);
   auto errors = observeErrors(fem);
   vtkNew<ProgressCounter> progress;
   fem->AddObserver(vtkCommand::ProgressEvent, progress);
@@ -218,12 +224,7 @@ TEST(vtkCorotationalHexFemFilter, EverySolverGivesTheMotionOfCholmod)
   auto tipAfterSteps = [&](void (vtkCorotationalHexFemFilter::*choose)())
   {
     vtkNew<vtkCorotationalHexFemFilter> fem;
-    fem->SetInputData(rest);
-    fem->SetYoungModulus(1.0e5);
-    fem->SetDensity(1.0);
-    fem->SetTimeStep(0.01);
-    fem->SetNumberOfSteps(20);
-    fem->SetGravity(0.0, 0.0, -0.001);
+    swingUnderGravity(fem, rest);
     (fem.GetPointer()->*choose)();
     auto errors = observeErrors(fem);
     fem->Update();
