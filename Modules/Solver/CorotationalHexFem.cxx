@@ -283,6 +283,35 @@ struct CorotationalHexFem::LinearSystem
   SmoothedAggregation multigrid;
   bool multigridValid = false;
   int multigridBuilds = 0;
+
+  // --- The factor across topology changes (bridgeTopologyChanges) ---------
+  /// By node: the node it was copied from (addNodeCopy), else -1.
+  std::vector<int> copySource;
+  /// By node: its first DOF in the numbering the factor was made for, and
+  /// that numbering's DOF count.
+  std::vector<int> factorDofOfNode;
+  int factorDofCount = 0;
+  /// Nodes of the hexahedra changed since the factor was made.
+  std::vector<int> touchedNodes;
+  /// The present factor is of an earlier pattern and preconditions through
+  /// the bridge until the new pattern's factor lands.
+  bool bridging = false;
+  /// Per free node: the first DOF of the node (or of the node it was copied
+  /// from) in the factor's numbering, else -1.
+  std::vector<int> bridgeDof;
+  /// The touched free nodes' DOFs, increasing, and their system block:
+  /// per entry of its upper triangle, the value index in `matrix`.
+  std::vector<int> touchedDofs;
+  SparseMatrix touchedMatrix;
+  std::vector<int> touchedValueOf;
+  /// The system's whole columns of the touched DOFs (both triangles), and
+  /// per entry its value index in `matrix`: a vector held on the touched
+  /// DOFs is multiplied by the system at the cost of those columns.
+  SparseMatrix touchedColumns;
+  std::vector<int> touchedColumnValueOf;
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper> touchedSolver;
+  long long touchedFactorStep = -1;
+  Eigen::VectorXd glued, gluedSolution, touchedRight, touchedSolution, touchedFirst, bridgeResidual;
 };
 
 CorotationalHexFem::CorotationalHexFem(const HexahedralMesh& mesh,
@@ -426,6 +455,7 @@ void CorotationalHexFem::setFixed(std::size_t node, bool fixed)
   {
     Fixed[node] = fixed ? 1 : 0;
     TopologyChanged = true;
+    System->touchedNodes.push_back(static_cast<int>(node));
   }
 }
 
@@ -496,6 +526,8 @@ std::size_t CorotationalHexFem::addNodeCopy(std::size_t source)
                 velocity = Velocities[source];
   const std::size_t copy = addNode(rest, position, velocity);
   Fixed[copy] = Fixed[source];
+  System->copySource.resize(Positions.size(), -1);
+  System->copySource[copy] = static_cast<int>(source);
   return copy;
 }
 
@@ -507,6 +539,7 @@ std::size_t CorotationalHexFem::addHexahedron(const Hexahedron& nodes,
   {
     NodeMasses[nodes[a]] += material.density * Elements.back().rest.shapeIntegrals[a];
   }
+  noteTouchedNodes(nodes);
   TopologyChanged = true;
   return Elements.size() - 1;
 }
@@ -537,6 +570,7 @@ void CorotationalHexFem::removeHexahedron(std::size_t h)
     NodeMasses[Elements[h].nodes[a]] -=
       Elements[h].material.density * Elements[h].rest.shapeIntegrals[a];
   }
+  noteTouchedNodes(Elements[h].nodes);
   TopologyChanged = true;
 }
 
@@ -570,6 +604,8 @@ std::size_t CorotationalHexFem::duplicateHexahedron(std::size_t h, const Hexahed
   {
     NodeMasses[nodes[a]] += copy.material.density * copy.rest.shapeIntegrals[a];
   }
+  noteTouchedNodes(Elements[h].nodes);
+  noteTouchedNodes(nodes);
   Elements.push_back(std::move(copy));
   TopologyChanged = true;
   return Elements.size() - 1;
@@ -592,8 +628,15 @@ void CorotationalHexFem::replaceHexahedronNodes(std::size_t h, const Hexahedron&
       NodeMasses[nodes[a]] += mass;
     }
   }
+  noteTouchedNodes(element.nodes);
+  noteTouchedNodes(nodes);
   element.nodes = nodes;
   TopologyChanged = true;
+}
+
+void CorotationalHexFem::noteTouchedNodes(const Hexahedron& nodes)
+{
+  System->touchedNodes.insert(System->touchedNodes.end(), nodes.begin(), nodes.end());
 }
 
 std::vector<std::vector<int>> CorotationalHexFem::blockRowsAbove() const
@@ -756,21 +799,257 @@ void CorotationalHexFem::prepareSystem()
   s.rhs.resize(s.dofCount);
   s.solution.setZero(s.dofCount);
   s.previousSolution.setZero(s.dofCount);
-  for (std::size_t n = 0; n < previousDofOfNode.size(); ++n)
+  // A node copied since starts from what it was copied from.
+  const auto previousDof = [&](int n)
   {
-    if (previousDofOfNode[n] >= 0 && s.dofOfNode[n] >= 0)
+    while (n >= 0 && (n >= static_cast<int>(previousDofOfNode.size()) || previousDofOfNode[n] < 0))
     {
-      s.previousSolution.segment<3>(s.dofOfNode[n]) =
-        previousSolution.segment<3>(previousDofOfNode[n]);
+      n = n < static_cast<int>(s.copySource.size()) ? s.copySource[n] : -1;
+    }
+    return n >= 0 ? previousDofOfNode[n] : -1;
+  };
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    const int from = s.dofOfNode[n] >= 0 ? previousDof(static_cast<int>(n)) : -1;
+    if (from >= 0)
+    {
+      s.previousSolution.segment<3>(s.dofOfNode[n]) = previousSolution.segment<3>(from);
     }
   }
   s.forces.assign(Positions.size(), Vector3::Zero());
   // A refresh under way is left to finish and dropped when due (no wait in
-  // this step); the factor is of another numbering.
+  // this step); the factor is of another numbering, kept as the bridge's.
+  const bool hadFactor = s.factorValid || s.bridging;
   ++s.pattern;
   s.factorValid = false;
   s.multigridValid = false;
   TopologyChanged = false;
+  s.bridging = hadFactor && Settings.bridgeTopologyChanges && refreshesInBackground() &&
+               s.dofCount <= BridgeUnknownLimit && !s.factorDofOfNode.empty();
+  if (s.bridging)
+  {
+    prepareBridge();
+  }
+}
+
+void CorotationalHexFem::prepareBridge()
+{
+  LinearSystem& s = *System;
+  const int freeNodes = s.dofCount / 3;
+  s.bridgeDof.assign(static_cast<std::size_t>(freeNodes), -1);
+  std::vector<char> touched(static_cast<std::size_t>(freeNodes), 0);
+  for (std::size_t n = 0; n < Positions.size(); ++n)
+  {
+    const int dof = s.dofOfNode[n];
+    if (dof < 0)
+    {
+      continue;
+    }
+    // The node itself in the factor's numbering, or what it was copied from.
+    for (int m = static_cast<int>(n); m >= 0;)
+    {
+      if (m < static_cast<int>(s.factorDofOfNode.size()) && s.factorDofOfNode[m] >= 0)
+      {
+        s.bridgeDof[dof / 3] = s.factorDofOfNode[m];
+        break;
+      }
+      m = m < static_cast<int>(s.copySource.size()) ? s.copySource[m] : -1;
+    }
+    touched[dof / 3] = s.bridgeDof[dof / 3] < 0;
+  }
+  for (int node : s.touchedNodes)
+  {
+    const int dof = s.dofOfNode[node];
+    if (dof >= 0)
+    {
+      touched[dof / 3] = 1;
+    }
+  }
+  // The touched nodes' block of the system: its entries' places in the
+  // pattern, and the block's own pattern (analysed once per change).
+  s.touchedDofs.clear();
+  std::vector<int> localOf(static_cast<std::size_t>(s.dofCount), -1);
+  for (int node = 0; node < freeNodes; ++node)
+  {
+    if (touched[node])
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        localOf[3 * node + k] = static_cast<int>(s.touchedDofs.size());
+        s.touchedDofs.push_back(3 * node + k);
+      }
+    }
+  }
+  std::vector<Eigen::Triplet<double, int>> entries;
+  std::vector<int> valueIndex;
+  for (int column : s.touchedDofs)
+  {
+    for (int k = s.matrix.outerIndexPtr()[column]; k < s.matrix.outerIndexPtr()[column + 1]; ++k)
+    {
+      const int row = s.matrix.innerIndexPtr()[k];
+      if (localOf[row] >= 0)
+      {
+        entries.emplace_back(localOf[row], localOf[column], static_cast<double>(entries.size()));
+        valueIndex.push_back(k);
+      }
+    }
+  }
+  // The touched DOFs' whole columns: an upper entry (row, column) serves
+  // column `column` and, mirrored, column `row`.
+  std::vector<Eigen::Triplet<double, int>> columnEntries;
+  std::vector<int> columnValueIndex;
+  for (int column = 0; column < s.dofCount; ++column)
+  {
+    for (int k = s.matrix.outerIndexPtr()[column]; k < s.matrix.outerIndexPtr()[column + 1]; ++k)
+    {
+      const int row = s.matrix.innerIndexPtr()[k];
+      if (localOf[column] >= 0)
+      {
+        columnEntries.emplace_back(row, localOf[column], static_cast<double>(columnEntries.size()));
+        columnValueIndex.push_back(k);
+      }
+      if (row != column && localOf[row] >= 0)
+      {
+        columnEntries.emplace_back(column, localOf[row], static_cast<double>(columnEntries.size()));
+        columnValueIndex.push_back(k);
+      }
+    }
+  }
+  const auto size = static_cast<Eigen::Index>(s.touchedDofs.size());
+  s.touchedColumns.resize(s.dofCount, size);
+  s.touchedColumns.setFromTriplets(columnEntries.begin(), columnEntries.end());
+  s.touchedColumnValueOf.resize(columnEntries.size());
+  for (Eigen::Index k = 0; k < s.touchedColumns.nonZeros(); ++k)
+  {
+    s.touchedColumnValueOf[k] =
+      columnValueIndex[static_cast<std::size_t>(s.touchedColumns.valuePtr()[k])];
+  }
+  s.touchedMatrix.resize(size, size);
+  s.touchedMatrix.setFromTriplets(entries.begin(), entries.end());
+  // Each entry met once: its stored value is its index in `entries`.
+  s.touchedValueOf.assign(entries.size(), -1);
+  for (Eigen::Index k = 0; k < s.touchedMatrix.nonZeros(); ++k)
+  {
+    s.touchedValueOf[k] = valueIndex[static_cast<std::size_t>(s.touchedMatrix.valuePtr()[k])];
+  }
+  if (size > 0)
+  {
+    s.touchedSolver.analyzePattern(s.touchedMatrix);
+  }
+  s.touchedFactorStep = -1;
+}
+
+void CorotationalHexFem::factorIsCurrent()
+{
+  LinearSystem& s = *System;
+  s.bridging = false;
+  s.factorDofOfNode = s.dofOfNode;
+  s.factorDofCount = s.dofCount;
+  s.touchedNodes.clear();
+}
+
+void CorotationalHexFem::addGluedCorrection(const Eigen::VectorXd& r, Eigen::VectorXd& z)
+{
+  // P^T Q F^-1 Q^T P r: copies summed into the nodes they were copied from,
+  // turned into the factor's frame, solved, and handed back.
+  LinearSystem& s = *System;
+  s.glued.setZero(s.factorDofCount);
+  const bool turn = s.rotatesFactor;
+  for (std::size_t n = 0; n < s.bridgeDof.size(); ++n)
+  {
+    const int to = s.bridgeDof[n];
+    if (to >= 0)
+    {
+      const auto from = r.segment<3>(static_cast<Eigen::Index>(3 * n));
+      if (turn)
+      {
+        s.glued.segment<3>(to).noalias() += s.relativeRotations[n].transpose() * from;
+      }
+      else
+      {
+        s.glued.segment<3>(to) += from;
+      }
+    }
+  }
+  s.factor->solve(s.glued, s.gluedSolution);
+  for (std::size_t n = 0; n < s.bridgeDof.size(); ++n)
+  {
+    const int from = s.bridgeDof[n];
+    if (from >= 0)
+    {
+      auto to = z.segment<3>(static_cast<Eigen::Index>(3 * n));
+      if (turn)
+      {
+        to.noalias() += s.relativeRotations[n] * s.gluedSolution.segment<3>(from);
+      }
+      else
+      {
+        to += s.gluedSolution.segment<3>(from);
+      }
+    }
+  }
+}
+
+void CorotationalHexFem::solveTouched()
+{
+  // touchedSolution = A_TT^-1 touchedRight, A_TT of this step (its pattern
+  // is fixed until the next change; the values are copied once a step).
+  LinearSystem& s = *System;
+  if (s.touchedFactorStep != s.stepIndex)
+  {
+    const double* from = s.matrix.valuePtr();
+    double* values = s.touchedMatrix.valuePtr();
+    for (std::size_t k = 0; k < s.touchedValueOf.size(); ++k)
+    {
+      values[k] = from[s.touchedValueOf[k]];
+    }
+    double* columns = s.touchedColumns.valuePtr();
+    for (std::size_t k = 0; k < s.touchedColumnValueOf.size(); ++k)
+    {
+      columns[k] = from[s.touchedColumnValueOf[k]];
+    }
+    s.touchedSolver.factorize(s.touchedMatrix);
+    s.touchedFactorStep = s.stepIndex;
+  }
+  s.touchedSolution = s.touchedSolver.solve(s.touchedRight);
+}
+
+void CorotationalHexFem::applyBridgedFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z)
+{
+  // Symmetric multiplicative two-level preconditioner: the touched DOFs'
+  // exact solve (S), the old factor on what remains (C), S again:
+  // z = S r + (I - S A) C (I - A S) r. Symmetric, and positive definite:
+  // outside the touched DOFs the glued map is one to one. The products
+  // with A involve a vector held on the touched DOFs only, or only its
+  // touched rows: they cost the touched columns, not the system.
+  LinearSystem& s = *System;
+  const auto touchedCount = static_cast<Eigen::Index>(s.touchedDofs.size());
+  s.touchedRight.resize(touchedCount);
+  for (Eigen::Index i = 0; i < touchedCount; ++i)
+  {
+    s.touchedRight[i] = r[s.touchedDofs[i]];
+  }
+  s.bridgeResidual = r;
+  if (touchedCount > 0)
+  {
+    solveTouched();
+    s.bridgeResidual.noalias() -= s.touchedColumns * s.touchedSolution;
+  }
+  z.setZero(r.size());
+  addGluedCorrection(s.bridgeResidual, z);
+  if (touchedCount == 0)
+  {
+    return;
+  }
+  // z_T += A_TT^-1 (r - A (S r + C r1))_T = -A_TT^-1 (A C r1)_T, since
+  // (A S r)_T = r_T.
+  s.touchedFirst = s.touchedSolution;
+  s.touchedRight.noalias() = -(s.touchedColumns.transpose() * z);
+  solveTouched();
+  for (Eigen::Index i = 0; i < touchedCount; ++i)
+  {
+    z[s.touchedDofs[i]] += s.touchedFirst[i] + s.touchedSolution[i];
+  }
 }
 
 Eigen::Matrix3d CorotationalHexFem::currentRotation(const Element& element) const
@@ -1113,6 +1392,7 @@ bool CorotationalHexFem::factorize(std::string& message)
 {
   LinearSystem& s = *System;
   s.factorValid = s.factor->factorize(s.matrix, s.pattern, Settings);
+  factorIsCurrent();
   s.factorStep = s.stepIndex;
   s.factorRotations = s.nodeRotations;
   s.rotatesFactor = false; // the factor is of this step's matrix
@@ -1172,6 +1452,7 @@ void CorotationalHexFem::landBackgroundRefactorization()
     std::swap(s.factor, refresh.factor); // the old factor is reused for the next refresh
     std::swap(s.factorRotations, refresh.rotations);
     s.factorValid = true;
+    factorIsCurrent();
     s.factorStep = refresh.startStep;
     updateRelativeRotations();
     s.excessIterations = 0;
@@ -1276,7 +1557,23 @@ void CorotationalHexFem::updateNodeRotations()
 void CorotationalHexFem::updateRelativeRotations()
 {
   LinearSystem& s = *System;
-  s.rotatesFactor = !s.nodeRotations.empty() && s.factorRotations.size() == s.nodeRotations.size();
+  if (s.bridging && !s.nodeRotations.empty() &&
+      s.factorRotations.size() == static_cast<std::size_t>(s.factorDofCount / 3))
+  {
+    // Each node against the factor's node it maps to.
+    s.rotatesFactor = true;
+    s.relativeRotations.resize(s.nodeRotations.size());
+    for (std::size_t n = 0; n < s.nodeRotations.size(); ++n)
+    {
+      const int to = s.bridgeDof[n];
+      s.relativeRotations[n] =
+        to < 0 ? Eigen::Matrix3d::Identity()
+               : Eigen::Matrix3d(s.nodeRotations[n] * s.factorRotations[to / 3].transpose());
+    }
+    return;
+  }
+  s.rotatesFactor =
+    !s.bridging && !s.nodeRotations.empty() && s.factorRotations.size() == s.nodeRotations.size();
   if (!s.rotatesFactor)
   {
     return;
@@ -1369,6 +1666,24 @@ bool CorotationalHexFem::solveWithStaleFactor(Eigen::VectorXd& x,
   if (!background && s.excessIterations > Settings.staleFactorIterationBudget)
   {
     s.factorValid = false;
+  }
+  if (s.bridging && !s.factorValid)
+  {
+    // Across a topology change: the old factor through the bridge, until
+    // the new pattern's factor lands (started by beginCoupledStep).
+    if (iteratePreconditioned(x,
+          Settings.staleFactorIterationCap,
+          iterations,
+          [this](const Eigen::VectorXd& r, Eigen::VectorXd& z) { applyBridgedFactor(r, z); }))
+    {
+      if (!x.allFinite())
+      {
+        message = "the solution is not finite (NaN or infinity)";
+        return false;
+      }
+      return true;
+    }
+    s.bridging = false; // it does not serve: factorize this step's matrix
   }
   for (int attempt = 0; attempt < 2; ++attempt)
   {
@@ -1524,6 +1839,12 @@ SolverResult CorotationalHexFem::beginCoupledStep()
     }
   }
   assembleContacts(h);
+  if (s.bridging && s.refresh.dueStep < 0)
+  {
+    // The new pattern's factor, analysed and made off the step (a refresh
+    // of the old pattern still running lands first, dropped).
+    startBackgroundRefactorization();
+  }
   if (!s.rhs.allFinite())
   {
     result.ok = false;
@@ -1578,6 +1899,11 @@ bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
     applyStaleFactor(r, z);
     return true;
   }
+  if (s.bridging && !s.factorValid)
+  {
+    applyBridgedFactor(r, z);
+    return true;
+  }
   if (!s.factorValid && !factorize(message))
   {
     return false;
@@ -1589,6 +1915,7 @@ bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
 void CorotationalHexFem::invalidateFactor()
 {
   System->factorValid = false;
+  System->bridging = false;
   System->multigridValid = false;
 }
 

@@ -75,6 +75,22 @@ enum class LinearSolverKind
 /// block-Jacobi does not converge in 1,000 iterations.
 constexpr int AutomaticDirectLimit = 25000;
 
+/// Unknowns up to which the factor bridges a topology change
+/// (CorotationalHexFemSettings::bridgeTopologyChanges). Measured (issue 20
+/// item 6, 2 cores, an ASan build on the other): the punch replay
+/// (meniscus, 504-576 unknowns, 5 bites) needs 4-13 bridged iterations a
+/// step and no factorization in a step after a bite (in-step
+/// factorizations per 1,000 steps 1.45 -> 0.24, FEM step after a bite
+/// 2.29 -> 1.99 ms); the 64-hexahedra block slit by 12 copied nodes 18-27
+/// (fresh factor 18-23: the slit swings), first step 3.6 -> 2.4 ms. The
+/// 1,000 block (4,158) slit by 33-77 copied nodes needs 15-27 against 5
+/// with a fresh factor: four bridged steps cost 3 times the factorization
+/// they avoid (first step 37-68 ms against 37-45), so larger systems
+/// factorize in the step after a change. Growing the touched set by rings
+/// of neighbours cut 26 iterations to 19 / 16 / 14 (1 / 2 / 3 rings) at a
+/// higher price per step.
+constexpr int BridgeUnknownLimit = 2000;
+
 /// Fill-reducing ordering of the CHOLMOD factor.
 enum class FactorOrdering
 {
@@ -162,6 +178,17 @@ struct CorotationalHexFemSettings
   /// factor then stays good through large rotations and is renewed for
   /// what rotations do not explain (stretch, contacts).
   bool rotateStaleFactor = true;
+  /// After a topology change (a cut), the previous pattern's factor keeps
+  /// preconditioning the new system until the new pattern's factor,
+  /// analysed and refreshed in the background, lands (issue 20 item 6):
+  /// the old factor solves the glued system (copies summed into the nodes
+  /// they were copied from), and an exact solve on the nodes the change
+  /// touched corrects it there, symmetrically before and after. The step
+  /// after a cut then factorizes nothing; it does only if that solve needs
+  /// more than staleFactorIterationCap iterations. Only with a background
+  /// refresh (StaleFactorConjugateGradient at any size by default) and up
+  /// to BridgeUnknownLimit unknowns.
+  bool bridgeTopologyChanges = true;
   /// The hierarchy of MultigridConjugateGradient (checked like the rest).
   SmoothedAggregationSettings multigrid;
   /// MultigridConjugateGradient rebuilds its hierarchy (from that step's
@@ -426,6 +453,22 @@ private:
   void updateRelativeRotations();
   /// z = P^-1 r with the (rotated) stale factor or multigrid hierarchy.
   void applyStaleFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  /// After a topology change: maps the new numbering to the factor's and
+  /// sets up the exact solve on the touched nodes (see
+  /// CorotationalHexFemSettings::bridgeTopologyChanges).
+  void prepareBridge();
+  /// z = P^-1 r across a topology change: touched-node solve, the old
+  /// factor on the glued residual, touched-node solve again.
+  void applyBridgedFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  /// z += the old factor's correction of r (restricted to its numbering,
+  /// solved, and prolonged back).
+  void addGluedCorrection(const Eigen::VectorXd& r, Eigen::VectorXd& z);
+  /// The touched DOFs' exact solve of the bridge's right-hand side.
+  void solveTouched();
+  /// The factor now in use is of the present pattern: bridge bookkeeping.
+  void factorIsCurrent();
+  /// Records nodes whose elements a topology change touched.
+  void noteTouchedNodes(const Hexahedron& nodes);
   /// The solver Automatic stands for at this size, else Settings.solver.
   LinearSolverKind effectiveSolver() const;
   /// Builds the multigrid hierarchy of the current matrix.

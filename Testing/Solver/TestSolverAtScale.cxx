@@ -415,6 +415,79 @@ TEST(SolverAtScale, ACutRebuildsTheMultigridHierarchyAndMovesAsRefactorizingEver
   EXPECT_LT(largestDifference(cutAndStep(multigrid, true), expected), 1e-6 * moved);
 }
 
+namespace
+{
+/// Steps a 10 x 5 x 2 block (thesis size, below BridgeUnknownLimit) 5
+/// steps, cuts it with node copies (and removes one hexahedron) and steps
+/// it 12 more; the in-step factorizations after the cut in `afterCut`.
+std::vector<Vector3> stepSlitThesisBlock(const CorotationalHexFemSettings& settings,
+  int& afterCut,
+  const std::function<void()>& backgroundHook = {})
+{
+  const HexahedralMesh mesh = fixedBlock(10, 5, 2);
+  CorotationalHexFem fem(mesh, tissue(10.0), settings);
+  fem.setBackgroundFactorizationHook(backgroundHook);
+  fem.setExternalForce(mesh.nodeCount() - 1, Vector3(0.0, 0.2, -0.5));
+  for (int k = 0; k < 5; ++k)
+  {
+    EXPECT_TRUE(fem.step().ok);
+  }
+  const int before = fem.synchronousFactorizationCount();
+  cutBlock(fem, 5.0, 3.0, true);
+  fem.removeHexahedron(fem.hexahedronCount() - 1);
+  for (int k = 0; k < 12; ++k)
+  {
+    const SolverResult result = fem.step();
+    EXPECT_TRUE(result.ok) << result.message;
+  }
+  afterCut = fem.synchronousFactorizationCount() - before;
+  EXPECT_GT(fem.nodeCount(), mesh.nodeCount());
+  return fem.positions();
+}
+} // namespace
+
+TEST(SolverAtScale, TheOldFactorBridgesACutUntilTheNewOneLands)
+{
+  // Issue 20 item 6: after a cut the old pattern's factor keeps
+  // preconditioning (glued copies plus the touched nodes' exact solve) while
+  // the new pattern is analysed and factorized in the background: no step
+  // factorizes, the motion is the exact one, and replays are bit for bit
+  // whatever the worker's timing. Without the bridge the step after the
+  // cut factorizes.
+  CorotationalHexFemSettings bridged = withSolver(LinearSolverKind::StaleFactorConjugateGradient);
+  int bridgedFactorizations = -1;
+  const std::vector<Vector3> prompt = stepSlitThesisBlock(bridged, bridgedFactorizations);
+  EXPECT_EQ(bridgedFactorizations, 0);
+
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> microseconds(0, 3000);
+  int delayed = 0, lateFactorizations = -1;
+  const std::vector<Vector3> late = stepSlitThesisBlock(bridged,
+    lateFactorizations,
+    [&]
+    {
+      ++delayed;
+      std::this_thread::sleep_for(std::chrono::microseconds(microseconds(random)));
+    });
+  EXPECT_GT(delayed, 1);
+  EXPECT_EQ(prompt, late);
+
+  CorotationalHexFemSettings unbridged = bridged;
+  unbridged.bridgeTopologyChanges = false;
+  int unbridgedFactorizations = -1;
+  stepSlitThesisBlock(unbridged, unbridgedFactorizations);
+  EXPECT_GE(unbridgedFactorizations, 1);
+
+  int exactFactorizations = 0;
+  const std::vector<Vector3> exact =
+    stepSlitThesisBlock(withSolver(LinearSolverKind::Cholmod), exactFactorizations);
+  const HexahedralMesh mesh = fixedBlock(10, 5, 2);
+  const double moved = largestDisplacement(
+    mesh, std::vector<Vector3>(exact.begin(), exact.begin() + mesh.nodeCount()));
+  ASSERT_GT(moved, 0.0);
+  EXPECT_LT(largestDifference(prompt, exact), 1e-6 * moved);
+}
+
 TEST(SolverAtScale, ANodeCopyIsItsSourcesTwinAndACutOfCopiesMovesLikeOneOfNewNodes)
 {
   // A copy has its source's rest and current position, velocity and fixed
