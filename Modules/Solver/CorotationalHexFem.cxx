@@ -218,6 +218,44 @@ struct BackgroundRefactorization
     }
   }
 };
+
+/// Entries of a matrix taken from the system matrix: built once with their
+/// pattern and, per stored entry, the value index in the system it copies
+/// (copyValuesInto refreshes them at the cost of the entries).
+struct MappedEntries
+{
+  std::vector<Eigen::Triplet<double, int>> entries; // value: its index here
+  std::vector<int> from;
+
+  void add(int row, int column, int systemIndex)
+  {
+    entries.emplace_back(row, column, static_cast<double>(entries.size()));
+    from.push_back(systemIndex);
+  }
+  /// Each (row, column) added once.
+  void build(Eigen::Index rows,
+    Eigen::Index columns,
+    SparseMatrix& matrix,
+    std::vector<int>& valueOf)
+  {
+    matrix.resize(rows, columns);
+    matrix.setFromTriplets(entries.begin(), entries.end());
+    valueOf.resize(entries.size());
+    for (Eigen::Index k = 0; k < matrix.nonZeros(); ++k)
+    {
+      valueOf[k] = from[static_cast<std::size_t>(matrix.valuePtr()[k])];
+    }
+  }
+};
+
+void copyValuesInto(const SparseMatrix& system, const std::vector<int>& valueOf, SparseMatrix& into)
+{
+  double* values = into.valuePtr();
+  for (std::size_t k = 0; k < valueOf.size(); ++k)
+  {
+    values[k] = system.valuePtr()[valueOf[k]];
+  }
+}
 } // namespace
 
 /// The free-DOF system: numbering, upper-triangular pattern, where each
@@ -291,6 +329,7 @@ struct CorotationalHexFem::LinearSystem
   /// that numbering's DOF count.
   std::vector<int> factorDofOfNode;
   int factorDofCount = 0;
+  long long factorPattern = -1;
   /// Nodes of the hexahedra changed since the factor was made.
   std::vector<int> touchedNodes;
   /// The present factor is of an earlier pattern and preconditions through
@@ -830,6 +869,10 @@ void CorotationalHexFem::prepareSystem()
   {
     prepareBridge();
   }
+  else
+  {
+    s.touchedNodes.clear(); // the next factor is of this pattern
+  }
 }
 
 void CorotationalHexFem::prepareBridge()
@@ -880,24 +923,10 @@ void CorotationalHexFem::prepareBridge()
       }
     }
   }
-  std::vector<Eigen::Triplet<double, int>> entries;
-  std::vector<int> valueIndex;
-  for (int column : s.touchedDofs)
-  {
-    for (int k = s.matrix.outerIndexPtr()[column]; k < s.matrix.outerIndexPtr()[column + 1]; ++k)
-    {
-      const int row = s.matrix.innerIndexPtr()[k];
-      if (localOf[row] >= 0)
-      {
-        entries.emplace_back(localOf[row], localOf[column], static_cast<double>(entries.size()));
-        valueIndex.push_back(k);
-      }
-    }
-  }
-  // The touched DOFs' whole columns: an upper entry (row, column) serves
-  // column `column` and, mirrored, column `row`.
-  std::vector<Eigen::Triplet<double, int>> columnEntries;
-  std::vector<int> columnValueIndex;
+  // One pass over the pattern: the touched block's upper entries, and the
+  // touched DOFs' whole columns (an upper entry (row, column) serves column
+  // `column` and, mirrored, column `row`).
+  MappedEntries block, columns;
   for (int column = 0; column < s.dofCount; ++column)
   {
     for (int k = s.matrix.outerIndexPtr()[column]; k < s.matrix.outerIndexPtr()[column + 1]; ++k)
@@ -905,33 +934,21 @@ void CorotationalHexFem::prepareBridge()
       const int row = s.matrix.innerIndexPtr()[k];
       if (localOf[column] >= 0)
       {
-        columnEntries.emplace_back(row, localOf[column], static_cast<double>(columnEntries.size()));
-        columnValueIndex.push_back(k);
+        columns.add(row, localOf[column], k);
+        if (localOf[row] >= 0)
+        {
+          block.add(localOf[row], localOf[column], k);
+        }
       }
       if (row != column && localOf[row] >= 0)
       {
-        columnEntries.emplace_back(column, localOf[row], static_cast<double>(columnEntries.size()));
-        columnValueIndex.push_back(k);
+        columns.add(column, localOf[row], k);
       }
     }
   }
   const auto size = static_cast<Eigen::Index>(s.touchedDofs.size());
-  s.touchedColumns.resize(s.dofCount, size);
-  s.touchedColumns.setFromTriplets(columnEntries.begin(), columnEntries.end());
-  s.touchedColumnValueOf.resize(columnEntries.size());
-  for (Eigen::Index k = 0; k < s.touchedColumns.nonZeros(); ++k)
-  {
-    s.touchedColumnValueOf[k] =
-      columnValueIndex[static_cast<std::size_t>(s.touchedColumns.valuePtr()[k])];
-  }
-  s.touchedMatrix.resize(size, size);
-  s.touchedMatrix.setFromTriplets(entries.begin(), entries.end());
-  // Each entry met once: its stored value is its index in `entries`.
-  s.touchedValueOf.assign(entries.size(), -1);
-  for (Eigen::Index k = 0; k < s.touchedMatrix.nonZeros(); ++k)
-  {
-    s.touchedValueOf[k] = valueIndex[static_cast<std::size_t>(s.touchedMatrix.valuePtr()[k])];
-  }
+  columns.build(s.dofCount, size, s.touchedColumns, s.touchedColumnValueOf);
+  block.build(size, size, s.touchedMatrix, s.touchedValueOf);
   if (size > 0)
   {
     s.touchedSolver.analyzePattern(s.touchedMatrix);
@@ -943,8 +960,12 @@ void CorotationalHexFem::factorIsCurrent()
 {
   LinearSystem& s = *System;
   s.bridging = false;
-  s.factorDofOfNode = s.dofOfNode;
-  s.factorDofCount = s.dofCount;
+  if (s.factorPattern != s.pattern) // the Cholmod kind factorizes every step
+  {
+    s.factorDofOfNode = s.dofOfNode;
+    s.factorDofCount = s.dofCount;
+    s.factorPattern = s.pattern;
+  }
   s.touchedNodes.clear();
 }
 
@@ -997,17 +1018,8 @@ void CorotationalHexFem::solveTouched()
   LinearSystem& s = *System;
   if (s.touchedFactorStep != s.stepIndex)
   {
-    const double* from = s.matrix.valuePtr();
-    double* values = s.touchedMatrix.valuePtr();
-    for (std::size_t k = 0; k < s.touchedValueOf.size(); ++k)
-    {
-      values[k] = from[s.touchedValueOf[k]];
-    }
-    double* columns = s.touchedColumns.valuePtr();
-    for (std::size_t k = 0; k < s.touchedColumnValueOf.size(); ++k)
-    {
-      columns[k] = from[s.touchedColumnValueOf[k]];
-    }
+    copyValuesInto(s.matrix, s.touchedValueOf, s.touchedMatrix);
+    copyValuesInto(s.matrix, s.touchedColumnValueOf, s.touchedColumns);
     s.touchedSolver.factorize(s.touchedMatrix);
     s.touchedFactorStep = s.stepIndex;
   }

@@ -318,12 +318,27 @@ void cutBlock(CorotationalHexFem& fem, double cutX, double cutY, bool copyNodes 
   }
 }
 
-/// Pushes the 1,000 block, cuts it after 5 steps (a refresh under way) and
-/// steps on 12 steps.
-std::vector<Vector3> stepCutBlock(const CorotationalHexFemSettings& settings,
+/// A block of nx x ny x nz pushed 5 steps, cut by cutBlock (and, with
+/// `removeOne`, its last hexahedron removed), then stepped 12 more.
+struct BlockCut
+{
+  int nx, ny, nz;
+  double cutX, cutY;
+  bool copyNodes = false;
+  bool removeOne = false;
+};
+
+struct CutBlockRun
+{
+  std::vector<Vector3> positions;
+  int factorizationsAfterCut = 0; ///< inside the steps after the cut
+};
+
+CutBlockRun stepCutBlock(const CorotationalHexFemSettings& settings,
+  const BlockCut& cut,
   const std::function<void()>& backgroundHook = {})
 {
-  const HexahedralMesh mesh = fixedBlock(20, 10, 5);
+  const HexahedralMesh mesh = fixedBlock(cut.nx, cut.ny, cut.nz);
   CorotationalHexFem fem(mesh, tissue(10.0), settings);
   fem.setBackgroundFactorizationHook(backgroundHook);
   fem.setExternalForce(mesh.nodeCount() - 1, Vector3(0.0, 0.2, -0.5));
@@ -331,15 +346,36 @@ std::vector<Vector3> stepCutBlock(const CorotationalHexFemSettings& settings,
   {
     EXPECT_TRUE(fem.step().ok);
   }
-  cutBlock(fem, 10.0, 6.0);
+  const int before = fem.synchronousFactorizationCount();
+  cutBlock(fem, cut.cutX, cut.cutY, cut.copyNodes);
+  if (cut.removeOne)
+  {
+    fem.removeHexahedron(fem.hexahedronCount() - 1);
+  }
   for (int k = 0; k < 12; ++k)
   {
     const SolverResult result = fem.step();
     EXPECT_TRUE(result.ok) << result.message;
   }
   EXPECT_GT(fem.nodeCount(), mesh.nodeCount());
-  return fem.positions();
+  return { fem.positions(), fem.synchronousFactorizationCount() - before };
 }
+
+/// A background hook sleeping a random 0 to `longest` microseconds, counting
+/// its calls in `delayed`.
+std::function<void()> randomDelays(unsigned seed, int longest, int& delayed)
+{
+  return [random = std::mt19937(seed),
+           microseconds = std::uniform_int_distribution<int>(0, longest),
+           &delayed]() mutable
+  {
+    ++delayed;
+    std::this_thread::sleep_for(std::chrono::microseconds(microseconds(random)));
+  };
+}
+
+/// The 1,000 block cut during a refresh (the cut after 5 steps).
+const BlockCut ThousandBlockCut{ 20, 10, 5, 10.0, 6.0 };
 } // namespace
 
 TEST(SolverAtScale, ACutDuringABackgroundRefreshReplaysAndMovesAsRefactorizingEveryStep)
@@ -352,19 +388,14 @@ TEST(SolverAtScale, ACutDuringABackgroundRefreshReplaysAndMovesAsRefactorizingEv
     withSolver(LinearSolverKind::StaleFactorConjugateGradient);
   background.backgroundRefactorizationThreshold = 0;
   background.staleFactorIterationBudget = 2;
-  const std::vector<Vector3> prompt = stepCutBlock(background);
-  std::mt19937 random(13);
-  std::uniform_int_distribution<int> microseconds(0, 30000);
+  const std::vector<Vector3> prompt = stepCutBlock(background, ThousandBlockCut).positions;
   int delayed = 0;
-  const std::vector<Vector3> late = stepCutBlock(background,
-    [&]
-    {
-      ++delayed;
-      std::this_thread::sleep_for(std::chrono::microseconds(microseconds(random)));
-    });
+  const std::vector<Vector3> late =
+    stepCutBlock(background, ThousandBlockCut, randomDelays(13, 30000, delayed)).positions;
   EXPECT_GT(delayed, 1);
   EXPECT_EQ(prompt, late);
-  const std::vector<Vector3> exact = stepCutBlock(withSolver(LinearSolverKind::Cholmod));
+  const std::vector<Vector3> exact =
+    stepCutBlock(withSolver(LinearSolverKind::Cholmod), ThousandBlockCut).positions;
   const HexahedralMesh mesh = fixedBlock(20, 10, 5);
   double moved = 0.0;
   for (std::size_t n = 0; n < mesh.nodeCount(); ++n)
@@ -415,37 +446,6 @@ TEST(SolverAtScale, ACutRebuildsTheMultigridHierarchyAndMovesAsRefactorizingEver
   EXPECT_LT(largestDifference(cutAndStep(multigrid, true), expected), 1e-6 * moved);
 }
 
-namespace
-{
-/// Steps a 10 x 5 x 2 block (thesis size, below BridgeUnknownLimit) 5
-/// steps, cuts it with node copies (and removes one hexahedron) and steps
-/// it 12 more; the in-step factorizations after the cut in `afterCut`.
-std::vector<Vector3> stepSlitThesisBlock(const CorotationalHexFemSettings& settings,
-  int& afterCut,
-  const std::function<void()>& backgroundHook = {})
-{
-  const HexahedralMesh mesh = fixedBlock(10, 5, 2);
-  CorotationalHexFem fem(mesh, tissue(10.0), settings);
-  fem.setBackgroundFactorizationHook(backgroundHook);
-  fem.setExternalForce(mesh.nodeCount() - 1, Vector3(0.0, 0.2, -0.5));
-  for (int k = 0; k < 5; ++k)
-  {
-    EXPECT_TRUE(fem.step().ok);
-  }
-  const int before = fem.synchronousFactorizationCount();
-  cutBlock(fem, 5.0, 3.0, true);
-  fem.removeHexahedron(fem.hexahedronCount() - 1);
-  for (int k = 0; k < 12; ++k)
-  {
-    const SolverResult result = fem.step();
-    EXPECT_TRUE(result.ok) << result.message;
-  }
-  afterCut = fem.synchronousFactorizationCount() - before;
-  EXPECT_GT(fem.nodeCount(), mesh.nodeCount());
-  return fem.positions();
-}
-} // namespace
-
 TEST(SolverAtScale, TheOldFactorBridgesACutUntilTheNewOneLands)
 {
   // Issue 20 item 6: after a cut the old pattern's factor keeps
@@ -454,38 +454,29 @@ TEST(SolverAtScale, TheOldFactorBridgesACutUntilTheNewOneLands)
   // factorizes, the motion is the exact one, and replays are bit for bit
   // whatever the worker's timing. Without the bridge the step after the
   // cut factorizes.
+  // A 10 x 5 x 2 block (thesis size, below BridgeUnknownLimit) cut with
+  // node copies and one hexahedron removed.
+  const BlockCut slit{ 10, 5, 2, 5.0, 3.0, true, true };
   CorotationalHexFemSettings bridged = withSolver(LinearSolverKind::StaleFactorConjugateGradient);
-  int bridgedFactorizations = -1;
-  const std::vector<Vector3> prompt = stepSlitThesisBlock(bridged, bridgedFactorizations);
-  EXPECT_EQ(bridgedFactorizations, 0);
+  const CutBlockRun prompt = stepCutBlock(bridged, slit);
+  EXPECT_EQ(prompt.factorizationsAfterCut, 0);
 
-  std::mt19937 random(7);
-  std::uniform_int_distribution<int> microseconds(0, 3000);
-  int delayed = 0, lateFactorizations = -1;
-  const std::vector<Vector3> late = stepSlitThesisBlock(bridged,
-    lateFactorizations,
-    [&]
-    {
-      ++delayed;
-      std::this_thread::sleep_for(std::chrono::microseconds(microseconds(random)));
-    });
+  int delayed = 0;
+  const CutBlockRun late = stepCutBlock(bridged, slit, randomDelays(7, 3000, delayed));
   EXPECT_GT(delayed, 1);
-  EXPECT_EQ(prompt, late);
+  EXPECT_EQ(prompt.positions, late.positions);
 
   CorotationalHexFemSettings unbridged = bridged;
   unbridged.bridgeTopologyChanges = false;
-  int unbridgedFactorizations = -1;
-  stepSlitThesisBlock(unbridged, unbridgedFactorizations);
-  EXPECT_GE(unbridgedFactorizations, 1);
+  EXPECT_GE(stepCutBlock(unbridged, slit).factorizationsAfterCut, 1);
 
-  int exactFactorizations = 0;
   const std::vector<Vector3> exact =
-    stepSlitThesisBlock(withSolver(LinearSolverKind::Cholmod), exactFactorizations);
+    stepCutBlock(withSolver(LinearSolverKind::Cholmod), slit).positions;
   const HexahedralMesh mesh = fixedBlock(10, 5, 2);
   const double moved = largestDisplacement(
     mesh, std::vector<Vector3>(exact.begin(), exact.begin() + mesh.nodeCount()));
   ASSERT_GT(moved, 0.0);
-  EXPECT_LT(largestDifference(prompt, exact), 1e-6 * moved);
+  EXPECT_LT(largestDifference(prompt.positions, exact), 1e-6 * moved);
 }
 
 TEST(SolverAtScale, ANodeCopyIsItsSourcesTwinAndACutOfCopiesMovesLikeOneOfNewNodes)
