@@ -10,6 +10,9 @@
 #include <limits>
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace thintissue
 {
 
@@ -277,15 +280,27 @@ std::vector<int> TissueCutter::reembedCollision(const TissueCutReport& report)
   return moved;
 }
 
-/// 5.3.5: a visual vertex goes to the copy of its hexahedron that holds
-/// its collision triangle (or, failing that, a triangle around it).
+int TissueCutter::branchHolder(int v) const
+{
+  const int triangle = Visual.collisionTriangleOf(v, Collision);
+  return triangle < 0 ? NoCollisionTriangle
+                      : Branches.copyHolding(VisualEmbedding.hexahedron(v), triangle);
+}
+
 bool TissueCutter::moveToBranchCopy(int v)
 {
+  return moveToBranchCopy(v, branchHolder(v));
+}
+
+/// 5.3.5: a visual vertex goes to the copy of its hexahedron that holds
+/// its collision triangle (`holder`, from branchHolder), or, failing that,
+/// a triangle around it.
+bool TissueCutter::moveToBranchCopy(int v, int holder)
+{
+  if (holder == NoCollisionTriangle)
+    return false;
   const int h = VisualEmbedding.hexahedron(v);
   const int triangle = Visual.collisionTriangleOf(v, Collision);
-  if (triangle < 0)
-    return false;
-  int holder = Branches.copyHolding(h, triangle);
   if (holder < 0)
   {
     std::vector<int> around;
@@ -443,15 +458,35 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
   VisualIndirect.resize(rest.size(), 0);
   WatchedIn.resize(rest.size(), -1);
   WatchedOfHexahedron.resize(VisualOfHexahedron.size());
-  std::vector<int> moved;
+  std::vector<int> unique;
+  unique.reserve(vertices.size());
   for (int v : vertices)
   {
-    if (VisualSeen[v])
-      continue;
-    VisualSeen[v] = 1;
-    if (moveToBranchCopy(v) || v >= firstNew)
-      moved.push_back(v);
+    if (!VisualSeen[v])
+    {
+      VisualSeen[v] = 1;
+      unique.push_back(v);
+    }
   }
+  // The copy holding each one's triangle only reads the binding and the
+  // branches: found on several threads when there are many; moving them
+  // stays serial (a few take the slow way, which edits shared lists).
+  std::vector<int> holders(unique.size());
+  const auto findHolders = [&](std::size_t from, std::size_t to)
+  {
+    for (std::size_t i = from; i < to; ++i)
+      holders[i] = branchHolder(unique[i]);
+  };
+  if (unique.size() < Settings.visual.parallelRegionTriangles)
+    findHolders(0, unique.size());
+  else
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, unique.size(), 1024),
+      [&](const tbb::blocked_range<std::size_t>& range)
+      { findHolders(range.begin(), range.end()); });
+  std::vector<int> moved;
+  for (std::size_t i = 0; i < unique.size(); ++i)
+    if (moveToBranchCopy(unique[i], holders[i]) || unique[i] >= firstNew)
+      moved.push_back(unique[i]);
   for (int v : vertices)
   {
     VisualSeen[v] = 0;

@@ -10,6 +10,8 @@
 #include <limits>
 #include <numeric>
 
+#include <tbb/parallel_for.h>
+
 namespace thintissue
 {
 
@@ -43,33 +45,51 @@ int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vec
 
 void CuttableVisualMesh::rebindSplitRegions(CutContext& context)
 {
-  for (RegionCut& region : context.regions)
+  // The new edges across the pieces get their indices here, in region
+  // order, not by whichever region binds a vertex to one first.
+  for (const RegionCut& region : context.regions)
+    for (const CrossingPath& crossing : region.crossings)
+      edgeIndex(crossing.ends[0], crossing.ends[1]);
+  forEachRegion(context,
+    [&](RegionCut& region, RegionWorker& worker) { rebindRegion(region, worker, context); });
+  for (const RegionCut& region : context.regions)
   {
-    context.activate(region);
-    const std::vector<char> onCut = bindCrossingVertices(region, context);
-    assignPieces(region, onCut, context);
-    context.deactivate(region);
+    context.rebound.insert(context.rebound.end(), region.rebound.begin(), region.rebound.end());
+    for (const auto& [point, slot, vertex] : region.endVertices)
+      context.edgePoints[point].visualVertex[slot] = vertex;
   }
+}
+
+void CuttableVisualMesh::rebindRegion(RegionCut& region,
+  RegionWorker& worker,
+  const CutContext& context)
+{
+  worker.activate(region);
+  const std::vector<char> onCut = bindCrossingVertices(region, worker, context);
+  assignPieces(region, onCut, worker, context);
+  worker.deactivate(region);
 }
 
 // A vertex on a traced cut is bound to its collision edge by its parameter
 // along the straight 2D cut. Two cuts from one collision vertex at a very
 // small angle may share their first visual vertices: those are bound to
 // that collision vertex.
-std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, CutContext& context)
+std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region,
+  RegionWorker& worker,
+  const CutContext& context)
 {
   const int side = region.side > 0 ? 1 : -1;
   // (local vertex, crossing) for the inner vertices of each traced cut,
   // grouped by vertex (a vertex a cut visits twice counts twice, as on two
   // cuts).
-  auto& crossingsOf = Buffers.crossingsOf;
+  auto& crossingsOf = worker.buffers.crossingsOf;
   crossingsOf.clear();
   for (std::size_t c = 0; c < region.crossings.size(); ++c)
   {
     const auto& vertices = region.crossings[c].vertices;
     for (std::size_t i = 1; i + 1 < vertices.size(); ++i)
     {
-      const int local = context.local(vertices[i]);
+      const int local = worker.local(vertices[i]);
       if (local < 0)
         throw Error("visual cut of '" + Mesh.name + "': visual vertex " +
                     std::to_string(vertices[i]) + " of a traced cut lies outside its region");
@@ -120,7 +140,7 @@ std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, Cu
       b.parameters = Vector3(1.0, 0.0, 0.0);
     }
     onCut[local] = 1;
-    context.rebound.push_back(w);
+    region.rebound.push_back(w);
     i = j;
   }
   for (const CrossingPath& crossing : region.crossings)
@@ -130,9 +150,10 @@ std::vector<char> CuttableVisualMesh::bindCrossingVertices(RegionCut& region, Cu
       const auto found = context.edgePointOf.find(crossing.ends[end]);
       if (found != context.edgePointOf.end())
       {
-        EdgePoint& point = context.edgePoints[found->second];
-        point.visualVertex[point.junction ? region.junctionSlot() : region.side] =
-          end == 0 ? crossing.vertices.front() : crossing.vertices.back();
+        const EdgePoint& point = context.edgePoints[found->second];
+        region.endVertices.push_back({ { found->second,
+          point.junction ? region.junctionSlot() : region.side,
+          end == 0 ? crossing.vertices.front() : crossing.vertices.back() } });
       }
     }
   }
@@ -190,11 +211,12 @@ void flattenSets(std::vector<int>& parent)
 // matched by sorting.
 void CuttableVisualMesh::assignPieces(RegionCut& region,
   const std::vector<char>& onCut,
-  CutContext& context)
+  RegionWorker& worker,
+  const CutContext& context)
 {
   const std::size_t count = region.vertices.size();
   const std::size_t triangleCount = region.newTriangles.size();
-  CutBuffers& buffers = Buffers;
+  CutBuffers& buffers = worker.buffers;
   // Local vertices on a traced cut or the region's border: their triangles
   // are joined through edges only.
   auto& special = buffers.special;
@@ -206,8 +228,8 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
   for (const CrossingPath& crossing : region.crossings)
     for (std::size_t i = 0; i + 1 < crossing.vertices.size(); ++i)
     {
-      const int a = context.local(crossing.vertices[i]);
-      const int b = context.local(crossing.vertices[i + 1]);
+      const int a = worker.local(crossing.vertices[i]);
+      const int b = worker.local(crossing.vertices[i + 1]);
       cutEdges.emplace_back(std::min(a, b), std::max(a, b));
       special[a] = special[b] = 1;
     }
@@ -260,20 +282,20 @@ void CuttableVisualMesh::assignPieces(RegionCut& region,
     if (borderEdges[e].first == borderEdges[e + 1].first)
       joinSets(parent, borderEdges[e].second, borderEdges[e + 1].second);
   flattenSets(parent);
-  rebindPieces(region, onCut, context);
+  rebindPieces(region, onCut, buffers, context);
 }
 
-// The pieces assignPieces found (Buffers.parent), in the order of their
+// The pieces assignPieces found (buffers.parent), in the order of their
 // first triangles, each with its triangles in order: the centroid decides
 // the collision piece, rebindPiece the rest.
 void CuttableVisualMesh::rebindPieces(RegionCut& region,
   const std::vector<char>& onCut,
-  CutContext& context)
+  CutBuffers& buffers,
+  const CutContext& context)
 {
   const CollisionTriangleSplit& split = context.cut->splits[region.split];
   const std::size_t count = region.vertices.size();
   const std::size_t triangleCount = region.newTriangles.size();
-  CutBuffers& buffers = Buffers;
   auto& pieceOf = buffers.pieceOf; // per set root: its piece
   pieceOf.assign(count + triangleCount, -1);
   auto& pieceStart = buffers.pieceStart;
@@ -330,27 +352,22 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
   {
     const int size = pieceStart[p + 1] - pieceStart[p];
     const int c = pieceContaining(region.pieces, centroids[p] / (3.0 * size));
-    rebindPiece(region,
-      members.data() + pieceStart[p],
-      size,
-      region.newLocalTriangles,
-      split.children[c],
-      inverses[c],
-      context);
+    rebindPiece(
+      region, members.data() + pieceStart[p], size, split.children[c], inverses[c], buffers);
   }
 }
 
 // A piece of a split region goes to collision triangle `child`; its inner
 // vertices are rebound there by formula 5-2, (a', b', c') = (a, b, c) M^-1.
-void CuttableVisualMesh::rebindPiece(const RegionCut& region,
+void CuttableVisualMesh::rebindPiece(RegionCut& region,
   const int* members,
   int memberCount,
-  const std::vector<Triangle>& corners,
   int child,
   const Eigen::Matrix3d& inverse,
-  CutContext& context)
+  CutBuffers& buffers)
 {
-  std::vector<char>& rebindable = Buffers.rebindable;
+  const std::vector<Triangle>& corners = region.newLocalTriangles;
+  std::vector<char>& rebindable = buffers.rebindable;
   const int side = region.side > 0 ? 1 : -1;
   Eigen::Matrix2d frameMatrix;
   frameMatrix.col(0) = region.frame[1] - region.frame[0];
@@ -385,7 +402,7 @@ void CuttableVisualMesh::rebindPiece(const RegionCut& region,
       const Vector3 y = (map * region.planar[local] + offset).cwiseMax(0.0);
       b.element = child;
       b.parameters = y / y.sum();
-      context.rebound.push_back(v);
+      region.rebound.push_back(v);
     }
   }
 }
@@ -533,61 +550,84 @@ bool CuttableVisualMesh::rootStillUses(const CuttableCollisionMesh& collision, i
 
 // Where the collision mesh opened, the visual vertices bound to an opened
 // collision vertex or edge get one copy per side of the opening.
-void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, CutContext& context)
+// The claims on visual vertices a collision triangle's regions make: a
+// corner bound to a collision vertex or edge whose original this cut copied
+// (CutContext::root) needs the copy serving that triangle.
+void CuttableVisualMesh::claimsOf(int T,
+  const CuttableCollisionMesh& collision,
+  const CutContext& context,
+  std::vector<Claim>& claims) const
 {
-  struct Claim
+  const Triangle& tri = collision.triangles()[T];
+  for (int side = 0; side < 2; ++side)
   {
-    int triangle;
-    int corner;
-    int vertex;
-    int element; ///< collision vertex, or edge (x, y) in `edge`
-    std::array<int, 2> edge;
-  };
-  std::vector<Claim> claims;
-  const auto& collisionTriangles = collision.triangles();
-  for (int T : context.cut->changedTriangles)
-  {
-    const Triangle& tri = collisionTriangles[T];
-    // A claim needs a corner copied by this cut (a vertex bound to that
-    // corner's original, or an edge whose ends are not both corners): the
-    // regions of a triangle that kept its corners (most pieces of the split
-    // ones on the side that stays) are not scanned.
-    if (context.root(tri[0]) == tri[0] && context.root(tri[1]) == tri[1] &&
-        context.root(tri[2]) == tri[2])
-      continue;
-    for (int side = 0; side < 2; ++side)
+    for (int t : Regions[T][side])
     {
-      for (int t : Regions[T][side])
+      for (int k = 0; k < 3; ++k)
       {
-        for (int k = 0; k < 3; ++k)
+        const int v = Mesh.triangles[t][k];
+        const VisualVertexBinding& b = Bindings[v];
+        if (b.kind == BindingKind::CollisionVertex)
         {
-          const int v = Mesh.triangles[t][k];
-          const VisualVertexBinding& b = Bindings[v];
-          if (b.kind == BindingKind::CollisionVertex)
+          if (tri[0] == b.element || tri[1] == b.element || tri[2] == b.element)
+            continue;
+          for (int x : tri)
+            if (context.root(x) == b.element)
+              claims.push_back({ t, k, v, x, { { -1, -1 } } });
+        }
+        else if (b.kind == BindingKind::CollisionEdge)
+        {
+          const auto& e = Edges[b.element];
+          const bool has0 = tri[0] == e[0] || tri[1] == e[0] || tri[2] == e[0];
+          const bool has1 = tri[0] == e[1] || tri[1] == e[1] || tri[2] == e[1];
+          if (has0 && has1)
+            continue;
+          for (int j = 0; j < 3; ++j)
           {
-            if (tri[0] == b.element || tri[1] == b.element || tri[2] == b.element)
-              continue;
-            for (int x : tri)
-              if (context.root(x) == b.element)
-                claims.push_back({ t, k, v, x, { { -1, -1 } } });
-          }
-          else if (b.kind == BindingKind::CollisionEdge)
-          {
-            const auto& e = Edges[b.element];
-            const bool has0 = tri[0] == e[0] || tri[1] == e[0] || tri[2] == e[0];
-            const bool has1 = tri[0] == e[1] || tri[1] == e[1] || tri[2] == e[1];
-            if (has0 && has1)
-              continue;
-            for (int j = 0; j < 3; ++j)
-            {
-              const int x = tri[j], y = tri[(j + 1) % 3];
-              if (edgeKey(context.root(x), context.root(y)) == edgeKey(e[0], e[1]))
-                claims.push_back({ t, k, v, -1, { { x, y } } });
-            }
+            const int x = tri[j], y = tri[(j + 1) % 3];
+            if (edgeKey(context.root(x), context.root(y)) == edgeKey(e[0], e[1]))
+              claims.push_back({ t, k, v, -1, { { x, y } } });
           }
         }
       }
     }
+  }
+}
+
+void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, CutContext& context)
+{
+  // A claim needs a corner copied by this cut (a vertex bound to that
+  // corner's original, or an edge whose ends are not both corners): the
+  // regions of a triangle that kept its corners (most pieces of the split
+  // ones on the side that stays) are not scanned. The scans only read, so
+  // large regions are scanned on several threads, each triangle's claims
+  // kept apart and joined in order.
+  const auto& collisionTriangles = collision.triangles();
+  std::vector<int> scanned;
+  std::size_t regionTriangles = 0;
+  for (int T : context.cut->changedTriangles)
+  {
+    const Triangle& tri = collisionTriangles[T];
+    if (context.root(tri[0]) == tri[0] && context.root(tri[1]) == tri[1] &&
+        context.root(tri[2]) == tri[2])
+      continue;
+    scanned.push_back(T);
+    regionTriangles += Regions[T][0].size() + Regions[T][1].size();
+  }
+  std::vector<Claim> claims;
+  if (regionTriangles < Settings.parallelRegionTriangles || scanned.size() < 2)
+  {
+    for (int T : scanned)
+      claimsOf(T, collision, context, claims);
+  }
+  else
+  {
+    std::vector<std::vector<Claim>> claimsPerTriangle(scanned.size());
+    tbb::parallel_for(std::size_t(0),
+      scanned.size(),
+      [&](std::size_t i) { claimsOf(scanned[i], collision, context, claimsPerTriangle[i]); });
+    for (const std::vector<Claim>& some : claimsPerTriangle)
+      claims.insert(claims.end(), some.begin(), some.end());
   }
   std::sort(claims.begin(),
     claims.end(),
@@ -768,9 +808,9 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
       context.addCopy(made.vertex, made.duplicateOf);
   }
   Regions.resize(collision.triangleCount());
-  // The local-index scratch is lent to the cut and comes back all -1 (on an
-  // error too: the regions active then are unknown).
-  context.localIndex.swap(LocalIndexScratch);
+  // The workers' local indices come back all -1 (on an error too: the
+  // regions active then are unknown).
+  context.worker = &Workers.front();
   try
   {
     splitEdgePaths(context);
@@ -780,11 +820,10 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   }
   catch (...)
   {
-    std::fill(context.localIndex.begin(), context.localIndex.end(), -1);
-    LocalIndexScratch.swap(context.localIndex);
+    for (RegionWorker& worker : Workers)
+      std::fill(worker.localIndex.begin(), worker.localIndex.end(), -1);
     throw;
   }
-  LocalIndexScratch.swap(context.localIndex);
   finishEdgePoints(context);
   openVisualMesh(collision, context);
   updateEdgePaths(collision, context);
@@ -806,7 +845,7 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   };
   result.newVertices = sorted(std::move(context.newVertices));
   // Each rebound vertex once, marked in the (all -1) local-index scratch.
-  std::vector<int>& seen = LocalIndexScratch;
+  std::vector<int>& seen = Workers.front().localIndex;
   if (seen.size() < Mesh.vertexCount())
     seen.resize(Mesh.vertexCount(), -1);
   result.reboundVertices.reserve(context.rebound.size() + result.newVertices.size());

@@ -16,6 +16,9 @@
 #include <numeric>
 #include <unordered_set>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 namespace thintissue
 {
 
@@ -501,11 +504,15 @@ void CuttableVisualMesh::reserveRoom()
   reserveTouched(TriangleRegion, triangles);
   reserveTouched(TriangleSide, triangles);
   reserveTouched(TriangleMaterial, triangles);
-  // The per-vertex scratch at its full size now: grown (and its pages first
-  // touched) during the first cut, it had cost that cut a copy of the mesh's
-  // size.
-  LocalIndexScratch.assign(vertices, -1);
-  Buffers.localTexture.assign(
+  // The per-vertex scratch at its full size now, for every worker a cut of
+  // this mesh may use: grown (and its pages first touched) during the first
+  // cut, it had cost that cut a copy of the mesh's size.
+  if (Mesh.triangleCount() >= Settings.parallelRegionTriangles)
+    Workers.resize(static_cast<std::size_t>(
+      std::clamp(tbb::this_task_arena::max_concurrency(), 1, MaxRegionWorkers)));
+  for (RegionWorker& worker : Workers)
+    worker.localIndex.assign(vertices, -1);
+  Workers.front().buffers.localTexture.assign(
     Mesh.textureCoordinates.size() + Mesh.textureCoordinates.size() / 4, -1);
 }
 
@@ -805,20 +812,58 @@ void CuttableVisualMesh::splitEdgePaths(CutContext& context)
   }
 }
 
+void CuttableVisualMesh::forEachRegion(CutContext& context,
+  const std::function<void(RegionCut&, RegionWorker&)>& work)
+{
+  std::vector<RegionCut>& regions = context.regions;
+  std::size_t triangles = 0;
+  for (const RegionCut& region : regions)
+    triangles += region.triangles.size();
+  const int workers = triangles < Settings.parallelRegionTriangles
+                        ? 1
+                        : std::min({ tbb::this_task_arena::max_concurrency(),
+                            MaxRegionWorkers,
+                            static_cast<int>(regions.size()) });
+  while (static_cast<int>(Workers.size()) < workers)
+    Workers.emplace_back().localIndex.assign(Workers.front().localIndex.size(), -1);
+  auto run = [&](int w)
+  {
+    for (std::size_t r = static_cast<std::size_t>(w); r < regions.size(); r += workers)
+    {
+      try
+      {
+        work(regions[r], Workers[w]);
+      }
+      catch (...)
+      {
+        regions[r].error = std::current_exception();
+      }
+    }
+  };
+  // The serial stages' worker is among them (and may have moved): no
+  // region stage uses it through the context meanwhile.
+  context.worker = nullptr;
+  if (workers == 1)
+    run(0);
+  else
+    tbb::parallel_for(0, workers, run);
+  context.worker = &Workers.front();
+  for (const RegionCut& region : regions)
+    if (region.error)
+      std::rethrow_exception(region.error);
+}
+
 // 5.3.2, second half: each new edge across a split triangle, traced in the
-// triangle's 2D frame through the visual edges of its region on each side.
+// triangle's 2D frame through the visual edges of its region on each side
+// (the regions on several workers: traceRegion).
 void CuttableVisualMesh::traceRegionCuts(CutContext& context)
 {
   const auto& rest = context.collision->restPositions();
   for (std::size_t s = 0; s < context.cut->splits.size(); ++s)
   {
     const CollisionTriangleSplit& split = context.cut->splits[s];
-    const std::array<Vector2, 3> frame = planarFrame(rest, split.parentCorners);
-    const double scale = std::max(
-      { (frame[1] - frame[0]).norm(), (frame[2] - frame[1]).norm(), (frame[0] - frame[2]).norm() });
     // The pieces' edges that cross the parent (not along one of its sides).
-    std::vector<std::array<int, 2>> crossing;
-    std::vector<std::array<Vector3, 2>> ends;
+    std::vector<CrossingPath> crossings;
     for (std::size_t c = 0; c < split.children.size(); ++c)
     {
       const Triangle& piece = context.collision->triangles()[split.children[c]];
@@ -829,87 +874,96 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
         if ((p[0] == 0.0 && q[0] == 0.0) || (p[1] == 0.0 && q[1] == 0.0) ||
             (p[2] == 0.0 && q[2] == 0.0))
           continue;
-        std::array<int, 2> pair{ { context.root(piece[k]), context.root(piece[(k + 1) % 3]) } };
-        std::array<Vector3, 2> end{ { p, q } };
-        if (pair[0] > pair[1])
+        CrossingPath crossing;
+        crossing.ends = { { context.root(piece[k]), context.root(piece[(k + 1) % 3]) } };
+        crossing.barycentric = { { p, q } };
+        if (crossing.ends[0] > crossing.ends[1])
         {
-          std::swap(pair[0], pair[1]);
-          std::swap(end[0], end[1]);
+          std::swap(crossing.ends[0], crossing.ends[1]);
+          std::swap(crossing.barycentric[0], crossing.barycentric[1]);
         }
-        if (std::find(crossing.begin(), crossing.end(), pair) == crossing.end())
-        {
-          crossing.push_back(pair);
-          ends.push_back(end);
-        }
+        if (std::none_of(crossings.begin(),
+              crossings.end(),
+              [&](const CrossingPath& other) { return other.ends == crossing.ends; }))
+          crossings.push_back(std::move(crossing));
       }
     }
     for (int side = 0; side < 2; ++side)
     {
-      RegionCut region;
+      RegionCut& region = context.regions.emplace_back();
       region.split = static_cast<int>(s);
       region.side = side;
       region.cleft = facesCleft(*context.collision, split.children.front(), side);
       region.triangles = Regions[split.parent][side];
-      // Local vertices (CutContext::localIndex), the triangles in them; a
-      // region has fewer vertices than triangles (plus its border).
-      std::vector<Triangle>& triangles = region.localTriangles;
-      triangles.reserve(region.triangles.size());
-      region.vertices.reserve(region.triangles.size() + 64);
-      region.parameters.reserve(region.triangles.size() + 64);
-      for (int t : region.triangles)
-      {
-        Triangle local;
-        for (int k = 0; k < 3; ++k)
-        {
-          const int v = Mesh.triangles[t][k];
-          local[k] = context.local(v);
-          if (local[k] >= 0)
-            continue;
-          local[k] = static_cast<int>(region.vertices.size());
-          // Most are inner vertices, bound to the parent itself.
-          const VisualVertexBinding& b = Bindings[v];
-          context.addToActive(region,
-            v,
-            b.kind == BindingKind::CollisionTriangle && b.element == split.parent
-              ? b.parameters
-              : parametersIn(v, split.parent, split.parentCorners),
-            Vector2::Zero());
-        }
-        triangles.push_back(local);
-      }
-      // Room for the vertices the re-meshing adds (a reallocation would
-      // copy the whole region).
-      const std::size_t room = region.vertices.size() + 64 + region.vertices.size() / 8;
-      region.vertices.reserve(room);
-      region.parameters.reserve(room);
-      std::vector<char> isInner(region.vertices.size());
-      for (std::size_t i = 0; i < region.vertices.size(); ++i)
-        isInner[i] = Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle;
-      region.planar = regionPlane(region.parameters, triangles, isInner, frame);
-      region.planar.reserve(room);
-      region.frame = frame;
-      region.candidate.assign(region.triangles.size(), 0);
-      for (const auto& corners : split.childCorners)
-        region.pieces.push_back({ { bulgedPoint(frame, corners[0]),
-          bulgedPoint(frame, corners[1]),
-          bulgedPoint(frame, corners[2]) } });
-      for (std::size_t e = 0; e < crossing.size(); ++e)
-      {
-        CrossingPath traced;
-        traced.ends = crossing[e];
-        traced.barycentric = ends[e];
-        traceCut(region, scale, traced, context);
-        region.crossings.push_back(std::move(traced));
-      }
-      context.deactivate(region);
-      context.regions.push_back(std::move(region));
+      region.frame = planarFrame(rest, split.parentCorners);
+      region.crossings = crossings;
     }
   }
+  forEachRegion(context,
+    [&](RegionCut& region, RegionWorker& worker) { traceRegion(region, worker, context); });
+}
+
+// One region: its local vertices and triangles, its plane, and its traced
+// cuts (it reads the visual mesh and binding only).
+void CuttableVisualMesh::traceRegion(RegionCut& region,
+  RegionWorker& worker,
+  const CutContext& context)
+{
+  const CollisionTriangleSplit& split = context.cut->splits[region.split];
+  const std::array<Vector2, 3>& frame = region.frame;
+  const double scale = std::max(
+    { (frame[1] - frame[0]).norm(), (frame[2] - frame[1]).norm(), (frame[0] - frame[2]).norm() });
+  // Local vertices (RegionWorker::localIndex), the triangles in them; a
+  // region has fewer vertices than triangles (plus its border).
+  std::vector<Triangle>& triangles = region.localTriangles;
+  triangles.reserve(region.triangles.size());
+  region.vertices.reserve(region.triangles.size() + 64);
+  region.parameters.reserve(region.triangles.size() + 64);
+  for (int t : region.triangles)
+  {
+    Triangle local;
+    for (int k = 0; k < 3; ++k)
+    {
+      const int v = Mesh.triangles[t][k];
+      local[k] = worker.local(v);
+      if (local[k] >= 0)
+        continue;
+      local[k] = static_cast<int>(region.vertices.size());
+      // Most are inner vertices, bound to the parent itself.
+      const VisualVertexBinding& b = Bindings[v];
+      worker.addToActive(region,
+        v,
+        b.kind == BindingKind::CollisionTriangle && b.element == split.parent
+          ? b.parameters
+          : parametersIn(v, split.parent, split.parentCorners),
+        Vector2::Zero());
+    }
+    triangles.push_back(local);
+  }
+  // Room for the vertices the re-meshing adds (a reallocation would copy
+  // the whole region).
+  const std::size_t room = region.vertices.size() + 64 + region.vertices.size() / 8;
+  region.vertices.reserve(room);
+  region.parameters.reserve(room);
+  std::vector<char> isInner(region.vertices.size());
+  for (std::size_t i = 0; i < region.vertices.size(); ++i)
+    isInner[i] = Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle;
+  region.planar = regionPlane(region.parameters, triangles, isInner, frame);
+  region.planar.reserve(room);
+  region.candidate.assign(region.triangles.size(), 0);
+  for (const auto& corners : split.childCorners)
+    region.pieces.push_back({ { bulgedPoint(frame, corners[0]),
+      bulgedPoint(frame, corners[1]),
+      bulgedPoint(frame, corners[2]) } });
+  for (CrossingPath& crossing : region.crossings)
+    traceCut(region, scale, crossing, worker, context);
+  worker.deactivate(region);
 }
 
 SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
   int vertex,
   const Vector3& barycentric,
+  const RegionWorker& worker,
   const CutContext& context) const
 {
   const int corner = cornerIndex(barycentric);
@@ -919,7 +973,7 @@ SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
     return point.visual[point.junction ? region.junctionSlot() : region.side];
   }
   const int paired = Paired[vertex][pairedSlot(vertex, region.side, region.cleft)];
-  if (context.local(paired) >= 0)
+  if (worker.local(paired) >= 0)
     return SurfacePoint::atVertex(paired);
   // The paths from this corner share their first segment with another
   // edge's path (a touch the binding could not undo), so the region starts
@@ -936,13 +990,14 @@ SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
 void CuttableVisualMesh::traceCut(RegionCut& region,
   double scale,
   CrossingPath& crossing,
+  RegionWorker& worker,
   const CutContext& context)
 {
-  // The region is active (CutContext::localIndex): its vertices' planar
-  // points, signed distances and nodes are dense arrays (Buffers, reused).
+  // The region is active (RegionWorker::localIndex): its vertices' planar
+  // points, signed distances and nodes are dense arrays (its buffers).
   auto localOf = [&](int v)
   {
-    const int i = context.local(v);
+    const int i = worker.local(v);
     if (i < 0)
       throw Error("visual cut of '" + Mesh.name + "': the cut from collision vertex " +
                   std::to_string(crossing.ends[0]) + " to " + std::to_string(crossing.ends[1]) +
@@ -957,8 +1012,9 @@ void CuttableVisualMesh::traceCut(RegionCut& region,
                                   p.edgeParameter * region.planar[localOf(p.edgeEnd)]);
   };
   const SurfacePoint start =
-    featurePoint(region, crossing.ends[0], crossing.barycentric[0], context);
-  const SurfacePoint end = featurePoint(region, crossing.ends[1], crossing.barycentric[1], context);
+    featurePoint(region, crossing.ends[0], crossing.barycentric[0], worker, context);
+  const SurfacePoint end =
+    featurePoint(region, crossing.ends[1], crossing.barycentric[1], worker, context);
   const Vector2 from = pointOf(start);
   const Vector2 along = pointOf(end) - from;
   crossing.planar = { { from, pointOf(end) } };
@@ -966,7 +1022,7 @@ void CuttableVisualMesh::traceCut(RegionCut& region,
   const double tolerance = OnLineTolerance * scale;
   // Crossing points: nodes 0 and 1 are the cut's ends, then vertices within
   // a round-off of the line and points inside edges whose ends lie apart.
-  CutBuffers& buffers = Buffers;
+  CutBuffers& buffers = worker.buffers;
   buffers.nodes.clear();
   buffers.nodes.push_back({ 0.0, start });
   buffers.nodes.push_back({ 1.0, end });
@@ -1012,7 +1068,7 @@ void CuttableVisualMesh::traceCut(RegionCut& region,
       buffers.lineSide[localOf(p.edgeEnd)] |= 4;
     }
   }
-  linkCrossedTriangles(region, tolerance, from, along);
+  linkCrossedTriangles(region, tolerance, from, along, buffers);
   groupLinks(buffers.links, buffers.nodes.size(), buffers.linkOffsets, buffers.linkTargets);
   if (!walkCut(
         buffers.nodes, buffers.linkOffsets, buffers.linkTargets, buffers.visited, crossing.path))
@@ -1024,14 +1080,14 @@ void CuttableVisualMesh::traceCut(RegionCut& region,
 }
 
 // Per region triangle, the crossing points on its border; a triangle with
-// two joins them (the cut passes through it): Buffers.links. Points inside
+// two joins them (the cut passes through it): buffers.links. Points inside
 // edges are made here, once per edge.
 void CuttableVisualMesh::linkCrossedTriangles(RegionCut& region,
   double tolerance,
   const Vector2& from,
-  const Vector2& along)
+  const Vector2& along,
+  CutBuffers& buffers)
 {
-  CutBuffers& buffers = Buffers;
   const auto& nodes = buffers.nodes;
   const auto& signedDistance = buffers.signedDistance;
   const auto& lineSide = buffers.lineSide;
@@ -1108,17 +1164,13 @@ void CuttableVisualMesh::linkCrossedTriangles(RegionCut& region,
   }
 }
 
-// The triangles of region r a traced path touches (to re-mesh) go to
-// `triangles` (with r in `regionOfLocal`); the others stay as they are.
-void CuttableVisualMesh::selectTouchedTriangles(int r,
-  CutContext& context,
-  std::vector<int>& triangles,
-  std::vector<int>& regionOfLocal)
+// The triangles of a region a traced path touches (to re-mesh) go to
+// region.touched; the others stay as they are.
+void CuttableVisualMesh::selectTouchedTriangles(RegionCut& region, RegionWorker& worker)
 {
-  RegionCut& region = context.regions[r];
   // Per local vertex: 1 if a traced path passes it, 2 if a path crosses
   // an edge from it (then the edge is looked up).
-  context.activate(region);
+  worker.activate(region);
   region.newTriangles.reserve(region.triangles.size() + region.triangles.size() / 2);
   region.newLocalTriangles.reserve(region.newTriangles.capacity());
   std::vector<char> mark(region.vertices.size(), 0);
@@ -1127,11 +1179,11 @@ void CuttableVisualMesh::selectTouchedTriangles(int r,
     for (const SurfacePoint& point : crossing.path.points)
     {
       if (point.isVertex())
-        mark[context.local(point.vertex)] |= 1;
+        mark[worker.local(point.vertex)] |= 1;
       else
       {
-        mark[context.local(point.edgeStart)] |= 2;
-        mark[context.local(point.edgeEnd)] |= 2;
+        mark[worker.local(point.edgeStart)] |= 2;
+        mark[worker.local(point.edgeEnd)] |= 2;
         edgePoints.push_back(edgeKey(point.edgeStart, point.edgeEnd));
       }
     }
@@ -1155,17 +1207,14 @@ void CuttableVisualMesh::selectTouchedTriangles(int r,
         touched = crossed(tri[k], tri[(k + 1) % 3], m[k], m[(k + 1) % 3]);
     }
     if (touched)
-    {
-      triangles.push_back(t);
-      regionOfLocal.push_back(r);
-    }
+      region.touched.push_back(t);
     else
     {
       region.newTriangles.push_back(t);
       region.newLocalTriangles.push_back(region.localTriangles[i]);
     }
   }
-  context.deactivate(region);
+  worker.deactivate(region);
 }
 
 //------------------------------------------------------------------------------
@@ -1175,10 +1224,16 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
 {
   // Only the triangles a traced path touches are re-meshed (the rest of
   // each region keeps its triangles; they are relabelled afterwards).
+  forEachRegion(context,
+    [&](RegionCut& region, RegionWorker& worker) { selectTouchedTriangles(region, worker); });
   std::vector<int> triangles;
   std::vector<int> regionOfLocal;
   for (std::size_t r = 0; r < context.regions.size(); ++r)
-    selectTouchedTriangles(static_cast<int>(r), context, triangles, regionOfLocal);
+  {
+    const std::vector<int>& touched = context.regions[r].touched;
+    triangles.insert(triangles.end(), touched.begin(), touched.end());
+    regionOfLocal.insert(regionOfLocal.end(), touched.size(), static_cast<int>(r));
+  }
   if (triangles.empty())
     return;
   // The touched triangles as a mesh of their own, numbered through the
@@ -1187,7 +1242,8 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
   std::vector<SurfacePath> paths;
   try
   {
-    extractTriangles(Mesh, triangles, context.localIndex, Buffers.localTexture, local);
+    extractTriangles(
+      Mesh, triangles, context.worker->localIndex, context.worker->buffers.localTexture, local);
     auto localOf = [&](int v)
     {
       const int i = context.local(v);
@@ -1217,11 +1273,11 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
   catch (...)
   {
     for (int v : local.globalVertex)
-      context.localIndex[v] = -1;
+      context.worker->localIndex[v] = -1;
     throw;
   }
   for (int v : local.globalVertex)
-    context.localIndex[v] = -1;
+    context.worker->localIndex[v] = -1;
   const RemeshedSurface remeshed = insertPaths(local.mesh, paths);
   const TriangleMesh& out = remeshed.mesh;
   const int localCount = static_cast<int>(local.globalVertex.size());

@@ -72,6 +72,13 @@ struct VisualCutSettings
   double jaggedAmplitude = 0.0;
   double jaggedWavelength = 0.5;
   std::uint32_t jaggedSeed = 0;
+  /// When the regions of the split collision triangles hold at least this
+  /// many visual triangles in all, they are traced and rebound on several
+  /// threads (up to CuttableVisualMesh::MaxRegionWorkers). The result is
+  /// the same either way, bit for bit. 0: always; the largest value: never.
+  /// Below the default a second thread costs more than it saves (measured:
+  /// Documentation/Architecture.md, "regions on two cores").
+  std::size_t parallelRegionTriangles = 2000;
 };
 
 /// How far the cut surface departs from the smooth cut (6.4.4): over the
@@ -198,7 +205,7 @@ private:
   struct CutContext;
   /// Buffers the stages of a cut work in, kept from cut to cut (cleared,
   /// never freed): a cut allocates little. Indices are local to the region
-  /// being worked on (CutContext::localIndex).
+  /// being worked on (RegionWorker::localIndex).
   struct CutBuffers
   {
     /// traceCut: a point where the cut crosses its region, at parameter s
@@ -267,6 +274,41 @@ private:
   struct RegionCut;
   struct EdgePoint;
   struct CrossingPath;
+  /// One worker's scratch for the regions it works on, one at a time: per
+  /// visual vertex its local index in the active region, else -1 (all -1
+  /// between regions), and its buffers. The region stages (tracing the
+  /// cuts, rebinding the pieces) run on up to MaxRegionWorkers at once,
+  /// each with its own; the serial stages use Workers[0].
+  struct RegionWorker
+  {
+    std::vector<int> localIndex;
+    CutBuffers buffers;
+    int local(int v) const { return v < static_cast<int>(localIndex.size()) ? localIndex[v] : -1; }
+    void activate(const RegionCut& region);
+    void deactivate(const RegionCut& region);
+    /// Appends a vertex to the active region.
+    void addToActive(RegionCut& region, int v, const Vector3& parameters, const Vector2& planar);
+    void setLocal(int v, int i)
+    {
+      if (v >= static_cast<int>(localIndex.size()))
+        localIndex.resize(static_cast<std::size_t>(v) + 1 + static_cast<std::size_t>(v) / 4, -1);
+      localIndex[v] = i;
+    }
+  };
+
+public:
+  /// Up to this many workers run the region stages of one cut.
+  static constexpr int MaxRegionWorkers = 4;
+
+private:
+  /// Runs `work` on every region of the cut, on several workers when the
+  /// regions are large (VisualCutSettings::parallelRegionTriangles) (region r on worker r mod
+  /// workers, so that the two sides of a split go to two workers). Regions are independent there:
+  /// each writes only its own triangles, inner vertices and lists. The
+  /// first failing region's error (in region order) is thrown once all
+  /// have run.
+  void forEachRegion(CutContext& context,
+    const std::function<void(RegionCut&, RegionWorker&)>& work);
 
   /// (lower, higher) in one key; inline: looked up per region vertex.
   static std::uint64_t edgeKey(int a, int b)
@@ -304,12 +346,19 @@ private:
   SurfacePoint featurePoint(const RegionCut& region,
     int vertex,
     const Vector3& barycentric,
+    const RegionWorker& worker,
     const CutContext& context) const;
-  void traceCut(RegionCut& region, double scale, CrossingPath& crossing, const CutContext& context);
+  void traceRegion(RegionCut& region, RegionWorker& worker, const CutContext& context);
+  void traceCut(RegionCut& region,
+    double scale,
+    CrossingPath& crossing,
+    RegionWorker& worker,
+    const CutContext& context);
   void linkCrossedTriangles(RegionCut& region,
     double tolerance,
     const Vector2& from,
-    const Vector2& along);
+    const Vector2& along,
+    CutBuffers& buffers);
 
   void splitEdgePaths(CutContext& context);
   void traceRegionCuts(CutContext& context);
@@ -325,23 +374,42 @@ private:
     const std::vector<int>& globalTexture,
     const std::vector<int>& globalTriangle,
     CutContext& context);
-  void selectTouchedTriangles(int r,
-    CutContext& context,
-    std::vector<int>& triangles,
-    std::vector<int>& regionOfLocal);
+  void selectTouchedTriangles(RegionCut& region, RegionWorker& worker);
   void rebindSplitRegions(CutContext& context);
-  std::vector<char> bindCrossingVertices(RegionCut& region, CutContext& context);
-  void assignPieces(RegionCut& region, const std::vector<char>& onCut, CutContext& context);
-  void rebindPieces(RegionCut& region, const std::vector<char>& onCut, CutContext& context);
-  void rebindPiece(const RegionCut& region,
+  void rebindRegion(RegionCut& region, RegionWorker& worker, const CutContext& context);
+  std::vector<char> bindCrossingVertices(RegionCut& region,
+    RegionWorker& worker,
+    const CutContext& context);
+  void assignPieces(RegionCut& region,
+    const std::vector<char>& onCut,
+    RegionWorker& worker,
+    const CutContext& context);
+  void rebindPieces(RegionCut& region,
+    const std::vector<char>& onCut,
+    CutBuffers& buffers,
+    const CutContext& context);
+  void rebindPiece(RegionCut& region,
     const int* members,
     int memberCount,
-    const std::vector<Triangle>& corners,
     int child,
     const Eigen::Matrix3d& inverse,
-    CutContext& context);
+    CutBuffers& buffers);
   void finishEdgePoints(CutContext& context);
   bool rootStillUses(const CuttableCollisionMesh& collision, int v) const;
+  /// A corner of a visual triangle that needs the copy of its vertex a
+  /// collision vertex or edge copy serves (openVisualMesh).
+  struct Claim
+  {
+    int triangle;
+    int corner;
+    int vertex;
+    int element; ///< collision vertex, or edge (x, y) in `edge`
+    std::array<int, 2> edge;
+  };
+  void claimsOf(int T,
+    const CuttableCollisionMesh& collision,
+    const CutContext& context,
+    std::vector<Claim>& claims) const;
   void openVisualMesh(const CuttableCollisionMesh& collision, CutContext& context);
   /// A junction edge left with one triangle keeps the two paths it sees.
   void dropUnseenJunctionPaths(const CuttableCollisionMesh& collision, CutContext& context);
@@ -466,9 +534,8 @@ private:
   std::unordered_map<int, EndColumn> EndColumns;
   std::vector<int> FreeTriangles;
   int CutSurfaceTexture = -1;
-  /// Per visual vertex, -1 between cuts (see CutContext::localIndex).
-  std::vector<int> LocalIndexScratch;
-  CutBuffers Buffers;
+  /// At least one; each one's local indices all -1 between cuts.
+  std::vector<RegionWorker> Workers = std::vector<RegionWorker>(1);
 };
 
 } // namespace thintissue

@@ -6,6 +6,7 @@
 #include "VisualMeshCut.h"
 
 #include <algorithm>
+#include <exception>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -38,10 +39,11 @@ struct CuttableVisualMesh::CrossingPath
   /// Its collision vertices (as before the mesh opened), lower first, and
   /// their barycentric coordinates in the parent.
   std::array<int, 2> ends{ { -1, -1 } };
-  std::array<Vector3, 2> barycentric;
-  SurfacePath path;              ///< in visual vertices before re-meshing
-  std::array<Vector2, 2> planar; ///< its ends in the region's plane
-  std::vector<int> vertices;     ///< the visual vertices it became
+  std::array<Vector3, 2> barycentric{ { Vector3::Zero(), Vector3::Zero() } };
+  SurfacePath path; ///< in visual vertices before re-meshing
+  /// Its ends in the region's plane.
+  std::array<Vector2, 2> planar{ { Vector2::Zero(), Vector2::Zero() } };
+  std::vector<int> vertices; ///< the visual vertices it became
 };
 
 /// The region of a split collision triangle on one side.
@@ -72,9 +74,42 @@ struct CuttableVisualMesh::RegionCut
   /// The pieces of the split triangle in that plane.
   std::vector<std::array<Vector2, 3>> pieces;
   std::vector<CrossingPath> crossings;
+  /// The triangles a traced cut touches (re-meshed), and the region's
+  /// triangles once re-meshed.
+  std::vector<int> touched;
   std::vector<int> newTriangles;
   std::vector<Triangle> newLocalTriangles; ///< their corners as local vertices
+  /// What the region stages (forEachRegion) made for the cut as a whole,
+  /// merged in region order once all regions are done: the visual vertices
+  /// rebound, and the visual vertex at each end of a traced cut that is an
+  /// edge point (edge point, path slot, visual vertex).
+  std::vector<int> rebound;
+  std::vector<std::array<int, 3>> endVertices;
+  std::exception_ptr error;
 };
+
+inline void CuttableVisualMesh::RegionWorker::activate(const RegionCut& region)
+{
+  for (std::size_t i = 0; i < region.vertices.size(); ++i)
+    setLocal(region.vertices[i], static_cast<int>(i));
+}
+
+inline void CuttableVisualMesh::RegionWorker::deactivate(const RegionCut& region)
+{
+  for (int v : region.vertices)
+    localIndex[v] = -1;
+}
+
+inline void CuttableVisualMesh::RegionWorker::addToActive(RegionCut& region,
+  int v,
+  const Vector3& parameters,
+  const Vector2& planar)
+{
+  setLocal(v, static_cast<int>(region.vertices.size()));
+  region.vertices.push_back(v);
+  region.parameters.push_back(parameters);
+  region.planar.push_back(planar);
+}
 
 struct CuttableVisualMesh::CutContext
 {
@@ -113,28 +148,15 @@ struct CuttableVisualMesh::CutContext
   std::vector<int> rebound;
   std::vector<int> changedTriangles;
 
-  /// Per visual vertex: its local index in the active region, else -1
-  /// (the mesh's scratch, lent for the cut: one region at a time).
-  std::vector<int> localIndex;
-
-  void activate(const RegionCut& region)
-  {
-    for (std::size_t i = 0; i < region.vertices.size(); ++i)
-      setLocal(region.vertices[i], static_cast<int>(i));
-  }
-  void deactivate(const RegionCut& region)
-  {
-    for (int v : region.vertices)
-      localIndex[v] = -1;
-  }
-  int local(int v) const { return v < static_cast<int>(localIndex.size()) ? localIndex[v] : -1; }
-  /// Appends a vertex to the active region.
+  /// The serial stages' worker (CuttableVisualMesh::Workers[0]); none
+  /// while the region stages run on several.
+  RegionWorker* worker = nullptr;
+  void activate(const RegionCut& region) { worker->activate(region); }
+  void deactivate(const RegionCut& region) { worker->deactivate(region); }
+  int local(int v) const { return worker->local(v); }
   void addToActive(RegionCut& region, int v, const Vector3& parameters, const Vector2& planar)
   {
-    setLocal(v, static_cast<int>(region.vertices.size()));
-    region.vertices.push_back(v);
-    region.parameters.push_back(parameters);
-    region.planar.push_back(planar);
+    worker->addToActive(region, v, parameters, planar);
   }
 
   void addCopy(int copy, int original)
@@ -157,14 +179,6 @@ struct CuttableVisualMesh::CutContext
     const int i = v - firstCopy;
     return i >= 0 && i < static_cast<int>(originalOf.size()) && originalOf[i] >= 0 ? originalOf[i]
                                                                                    : v;
-  }
-
-private:
-  void setLocal(int v, int i)
-  {
-    if (v >= static_cast<int>(localIndex.size()))
-      localIndex.resize(static_cast<std::size_t>(v) + 1 + static_cast<std::size_t>(v) / 4, -1);
-    localIndex[v] = i;
   }
 };
 

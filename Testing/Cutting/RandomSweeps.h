@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
+#include <memory>
 #include <random>
 
 namespace thintissue
@@ -51,8 +53,23 @@ public:
       CorotationalHexFem fem(Model.simulation, test::softTissue(), sweepStepSettings());
       TissueCutterSettings settings;
       settings.visual.cutSurfaceRows = e % 3;
+      // Every other episode runs the region stages on several threads
+      // whatever the regions' size (the models' regions are small).
+      TissueCutterSettings serial = settings;
+      serial.visual.parallelRegionTriangles = std::numeric_limits<std::size_t>::max();
+      if (e % 2 || CompareThreads)
+        settings.visual.parallelRegionTriangles = 0;
       TissueCutter cutter = Binding ? TissueCutter(*Binding, Model.simulation, &fem, settings)
                                     : TissueCutter(Model.collision, Model.simulation, &fem);
+      // The twin cuts the same on one thread (CompareThreads).
+      std::unique_ptr<CorotationalHexFem> twinFem;
+      std::unique_ptr<TissueCutter> twin;
+      if (CompareThreads && Binding)
+      {
+        twinFem = std::make_unique<CorotationalHexFem>(
+          Model.simulation, test::softTissue(), sweepStepSettings());
+        twin = std::make_unique<TissueCutter>(*Binding, Model.simulation, twinFem.get(), serial);
+      }
       // Prepared binding paths may lie beside their collision edges by more
       // than the cut's paths may (segmentations: paths detour around
       // defects, thin rims are inset). The regions between such paths are
@@ -92,11 +109,25 @@ public:
           ++Refused;
           ASSERT_EQ(cutter.collision().vertexCount(), vertices);
         }
+        if (twin)
+        {
+          try
+          {
+            twin->cut(blade);
+          }
+          catch (const InvalidInputError&)
+          {
+          }
+          ASSERT_TRUE(sameVisualState(cutter, *twin))
+            << Model.name << ", episode " << e << ", sweep " << s << ": several threads and one";
+        }
         ++Sweeps;
         ASSERT_TRUE(cutterIsConsistent(cutter, Model.simulation, rimOffset))
           << Model.name << ", episode " << e << ", sweep " << s;
         ASSERT_EQ(fem.nodeCount(), cutter.simulation().nodeCount());
         ASSERT_TRUE(fem.step().ok) << Model.name << ", episode " << e << ", sweep " << s;
+        if (twinFem)
+          twinFem->step();
       }
     }
   }
@@ -104,6 +135,31 @@ public:
   int Refused = 0;
   /// Cut the bound visual mesh too.
   const VisualCollisionBinding* Binding = nullptr;
+  /// With a binding: every episode cuts on several threads, and a twin
+  /// cutting the same on one thread must end each sweep with the same
+  /// visual mesh, binding and embedding, bit for bit.
+  bool CompareThreads = false;
+
+  static bool sameVisualState(const TissueCutter& a, const TissueCutter& b)
+  {
+    const TriangleMesh& x = a.visual().mesh();
+    const TriangleMesh& y = b.visual().mesh();
+    if (x.positions != y.positions || x.triangles != y.triangles ||
+        x.textureCoordinates != y.textureCoordinates || x.textureCorners != y.textureCorners ||
+        a.visualEmbedding().localCoordinates() != b.visualEmbedding().localCoordinates() ||
+        a.visual().bindings().size() != b.visual().bindings().size())
+      return false;
+    for (std::size_t v = 0; v < x.vertexCount(); ++v)
+    {
+      const VisualVertexBinding& p = a.visual().bindings()[v];
+      const VisualVertexBinding& q = b.visual().bindings()[v];
+      if (p.kind != q.kind || p.element != q.element || p.side != q.side ||
+          p.parameters != q.parameters ||
+          a.visualEmbedding().hexahedron(v) != b.visualEmbedding().hexahedron(v))
+        return false;
+    }
+    return true;
+  }
 
 private:
   double uniform(double a, double b)

@@ -325,6 +325,26 @@ TEST(TissueCutterProperty, RandomSweepsCutTheCleavedMeniscusVisualMeshConsistent
   sweepTornMeniscusVisually(MeniscusTearType::HorizontalCleavage, 5514u);
 }
 
+// The region stages on several threads (forced, whatever the regions'
+// size) cut as on one, bit for bit, over the cleaved meniscus (junctions,
+// clefts) and the sheet: the simulator replays sessions exactly.
+TEST(TissueCutterProperty, SeveralThreadsCutBitForBitAsOne)
+{
+  MeniscusParameters parameters;
+  parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
+  const MeniscusModel meniscus = makeMeniscus(parameters);
+  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
+  for (const TissueModel* model : { static_cast<const TissueModel*>(&meniscus), &sheet })
+  {
+    const VisualCollisionBinding binding = bindVisualToCollision(model->visual, model->collision);
+    RandomSweeps sweeps(*model, 6161u);
+    sweeps.Binding = &binding;
+    sweeps.CompareThreads = true;
+    sweeps.run(4, 20);
+    EXPECT_EQ(sweeps.Sweeps, 80) << model->name;
+  }
+}
+
 namespace
 {
 

@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
+#include <string>
 
 using namespace thintissue;
 using namespace thintissue::cutting_test;
@@ -114,6 +116,65 @@ TEST(VisualCut, RandomSweepsKeepTheVisualMeshValid)
       pair.cut(Blade::sweptSegment(
         a - Vector3(0, 0, 5), a + Vector3(0, 0, 5), b - Vector3(0, 0, 5), b + Vector3(0, 0, 5)));
       ASSERT_TRUE(visualMeshIsValid(pair.visual, pair.collision)) << "run " << run << ", cut " << c;
+    }
+  }
+}
+
+namespace
+{
+
+void expectSameVisualMesh(const CuttableVisualMesh& a,
+  const CuttableVisualMesh& b,
+  const std::string& where)
+{
+  ASSERT_EQ(a.mesh().positions, b.mesh().positions) << where;
+  ASSERT_EQ(a.mesh().triangles, b.mesh().triangles) << where;
+  ASSERT_EQ(a.mesh().textureCoordinates, b.mesh().textureCoordinates) << where;
+  ASSERT_EQ(a.mesh().textureCorners, b.mesh().textureCorners) << where;
+  ASSERT_EQ(a.bindings().size(), b.bindings().size()) << where;
+  for (std::size_t v = 0; v < a.bindings().size(); ++v)
+  {
+    const VisualVertexBinding& x = a.bindings()[v];
+    const VisualVertexBinding& y = b.bindings()[v];
+    ASSERT_TRUE(x.kind == y.kind && x.element == y.element && x.side == y.side &&
+                x.parameters == y.parameters)
+      << where << ": binding of visual vertex " << v;
+  }
+}
+
+} // namespace
+
+// The regions of a cut traced and rebound on several threads give the
+// same visual mesh and binding, bit for bit, as on one (the simulator
+// replays sessions exactly).
+TEST(VisualCut, RegionsOnSeveralThreadsCutBitForBitAsOnOne)
+{
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> coordinate(-60.0, 60.0);
+  for (int run = 0; run < 6; ++run)
+  {
+    VisualCutSettings serial{ run % 3 };
+    serial.parallelRegionTriangles = std::numeric_limits<std::size_t>::max();
+    VisualCutSettings parallel = serial;
+    parallel.parallelRegionTriangles = 0;
+    CutPair one(sheetBinding(), run % 3);
+    CutPair several(sheetBinding(), run % 3);
+    one.visual.setSettings(serial);
+    several.visual.setSettings(parallel);
+    for (int c = 0; c < 4; ++c)
+    {
+      const Vector3 a(coordinate(random), coordinate(random), 0.0);
+      const Vector3 b(coordinate(random), coordinate(random), 0.0);
+      const Blade blade = Blade::sweptSegment(
+        a - Vector3(0, 0, 5), a + Vector3(0, 0, 5), b - Vector3(0, 0, 5), b + Vector3(0, 0, 5));
+      const VisualCutResult x = one.cut(blade);
+      const VisualCutResult y = several.cut(blade);
+      const std::string where = "run " + std::to_string(run) + ", cut " + std::to_string(c);
+      EXPECT_EQ(x.newVertices, y.newVertices) << where;
+      EXPECT_EQ(x.reboundVertices, y.reboundVertices) << where;
+      EXPECT_EQ(x.changedTriangles, y.changedTriangles) << where;
+      expectSameVisualMesh(one.visual, several.visual, where);
+      ASSERT_TRUE(visualMeshIsValid(several.visual, several.collision)) << where;
     }
   }
 }
