@@ -903,8 +903,8 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
     [&](RegionCut& region, RegionWorker& worker) { traceRegion(region, worker, context); });
 }
 
-// One region: its local vertices and triangles, its plane, and its traced
-// cuts (it reads the visual mesh and binding only).
+// One region: its local vertices and triangles, its plane, its traced cuts
+// and the triangles they touch (it reads the visual mesh and binding only).
 void CuttableVisualMesh::traceRegion(RegionCut& region,
   RegionWorker& worker,
   const CutContext& context)
@@ -958,6 +958,7 @@ void CuttableVisualMesh::traceRegion(RegionCut& region,
   for (CrossingPath& crossing : region.crossings)
     traceCut(region, scale, crossing, worker, context);
   worker.deactivate(region);
+  selectTouchedTriangles(region, worker);
 }
 
 SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
@@ -1224,8 +1225,6 @@ void CuttableVisualMesh::remeshRegions(CutContext& context)
 {
   // Only the triangles a traced path touches are re-meshed (the rest of
   // each region keeps its triangles; they are relabelled afterwards).
-  forEachRegion(context,
-    [&](RegionCut& region, RegionWorker& worker) { selectTouchedTriangles(region, worker); });
   std::vector<int> triangles;
   std::vector<int> regionOfLocal;
   for (std::size_t r = 0; r < context.regions.size(); ++r)

@@ -78,7 +78,7 @@ struct VisualCutSettings
   /// the same either way, bit for bit. 0: always; the largest value: never.
   /// Below the default a second thread costs more than it saves (measured:
   /// Documentation/Architecture.md, "regions on two cores").
-  std::size_t parallelRegionTriangles = 2000;
+  std::size_t parallelRegionTriangles = 4000;
 };
 
 /// How far the cut surface departs from the smooth cut (6.4.4): over the
