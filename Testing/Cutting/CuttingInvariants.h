@@ -347,6 +347,30 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
   return ::testing::AssertionSuccess();
 }
 
+/// Two visual meshes cut alike: positions, triangles, texture coordinates
+/// and bindings equal bit for bit (the first difference named).
+inline ::testing::AssertionResult sameVisualMesh(const CuttableVisualMesh& a,
+  const CuttableVisualMesh& b)
+{
+  const TriangleMesh& x = a.mesh();
+  const TriangleMesh& y = b.mesh();
+  if (x.positions != y.positions || x.triangles != y.triangles)
+    return ::testing::AssertionFailure() << "positions or triangles differ";
+  if (x.textureCoordinates != y.textureCoordinates || x.textureCorners != y.textureCorners)
+    return ::testing::AssertionFailure() << "texture coordinates differ";
+  if (a.bindings().size() != b.bindings().size())
+    return ::testing::AssertionFailure() << "binding counts differ";
+  for (std::size_t v = 0; v < a.bindings().size(); ++v)
+  {
+    const VisualVertexBinding& p = a.bindings()[v];
+    const VisualVertexBinding& q = b.bindings()[v];
+    if (p.kind != q.kind || p.element != q.element || p.side != q.side ||
+        p.parameters != q.parameters)
+      return ::testing::AssertionFailure() << "binding of visual vertex " << v << " differs";
+  }
+  return ::testing::AssertionSuccess();
+}
+
 /// Visual mesh of a cutter (5.3.5): valid (visualMeshIsValid), embedded
 /// point for point, and every visual vertex in a hexahedron whose nodes
 /// belong to the collision piece of its own collision triangle (a visual

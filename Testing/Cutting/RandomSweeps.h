@@ -140,25 +140,19 @@ public:
   /// visual mesh, binding and embedding, bit for bit.
   bool CompareThreads = false;
 
-  static bool sameVisualState(const TissueCutter& a, const TissueCutter& b)
+  static ::testing::AssertionResult sameVisualState(const TissueCutter& a, const TissueCutter& b)
   {
-    const TriangleMesh& x = a.visual().mesh();
-    const TriangleMesh& y = b.visual().mesh();
-    if (x.positions != y.positions || x.triangles != y.triangles ||
-        x.textureCoordinates != y.textureCoordinates || x.textureCorners != y.textureCorners ||
-        a.visualEmbedding().localCoordinates() != b.visualEmbedding().localCoordinates() ||
-        a.visual().bindings().size() != b.visual().bindings().size())
-      return false;
-    for (std::size_t v = 0; v < x.vertexCount(); ++v)
-    {
-      const VisualVertexBinding& p = a.visual().bindings()[v];
-      const VisualVertexBinding& q = b.visual().bindings()[v];
-      if (p.kind != q.kind || p.element != q.element || p.side != q.side ||
-          p.parameters != q.parameters ||
-          a.visualEmbedding().hexahedron(v) != b.visualEmbedding().hexahedron(v))
-        return false;
-    }
-    return true;
+    const ::testing::AssertionResult mesh = sameVisualMesh(a.visual(), b.visual());
+    if (!mesh)
+      return mesh;
+    const HexahedralEmbedding& x = a.visualEmbedding();
+    const HexahedralEmbedding& y = b.visualEmbedding();
+    if (x.localCoordinates() != y.localCoordinates())
+      return ::testing::AssertionFailure() << "visual embeddings differ";
+    for (std::size_t v = 0; v < x.pointCount(); ++v)
+      if (x.hexahedron(v) != y.hexahedron(v))
+        return ::testing::AssertionFailure() << "visual vertex " << v << " in another hexahedron";
+    return ::testing::AssertionSuccess();
   }
 
 private:
