@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -105,12 +106,24 @@ void cutVisualAndReport(const std::string& name,
   const Blade& blade,
   int repetitions,
   BenchmarkReporter& reporter,
-  std::optional<double> thesisTotal = std::nullopt)
+  std::optional<double> thesisTotal = std::nullopt,
+  bool alsoOnOneThread = false)
 {
   std::vector<double> stages[4];
+  std::vector<double> oneThread;
   std::size_t changed = 0, cutTriangles = 0;
   for (int r = 0; r < repetitions; ++r)
   {
+    // The same cut with its region stages on one thread, interleaved with
+    // the default (so that both see the same load).
+    if (alsoOnOneThread)
+    {
+      CorotationalHexFem fem(simulation, softTissue());
+      TissueCutterSettings serial;
+      serial.visual.parallelRegionTriangles = std::numeric_limits<std::size_t>::max();
+      TissueCutter cutter(binding, simulation, &fem, serial);
+      oneThread.push_back(cutter.cut(blade).totalMilliseconds);
+    }
     CorotationalHexFem fem(simulation, softTissue());
     TissueCutter cutter(binding, simulation, &fem);
     const auto report = cutter.cut(blade);
@@ -131,6 +144,8 @@ void cutVisualAndReport(const std::string& name,
     what, "visual cut, binding update and cut surface (5.3.2-5.3.4)", median(stages[1]), "ms");
   reporter.report(what, "visual-simulation embedding update (5.3.5)", median(stages[2]), "ms");
   reporter.report(what, "whole cut", median(stages[3]), "ms", thesisTotal);
+  if (alsoOnOneThread)
+    reporter.report(what, "whole cut, region stages on one thread", median(oneThread), "ms");
   // A cut must write its output (the visual triangles it changes grow as the
   // square root of the visual resolution): what it costs per triangle
   // changed shows whether it costs what it touches.
@@ -405,7 +420,8 @@ THINTISSUE_BENCHMARK_SUITE(cuttingSuite,
       shortCutAcross(box),
       runs,
       reporter,
-      model <= 4 ? std::optional<double>(table54[model - 1]) : std::nullopt);
+      model <= 4 ? std::optional<double>(table54[model - 1]) : std::nullopt,
+      true);
   }
   const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
   countConsecutiveCuts(
