@@ -300,20 +300,26 @@ bool TissueCutter::moveToBranchCopy(int v, int holder)
   if (holder == NoCollisionTriangle)
     return false;
   const int h = VisualEmbedding.hexahedron(v);
-  const int triangle = Visual.collisionTriangleOf(v, Collision);
-  if (holder < 0)
+  if (holder >= 0)
   {
-    std::vector<int> around;
-    for (int corner : Collision.triangles()[triangle])
-      around.insert(around.end(),
-        Collision.trianglesOfVertex(corner).begin(),
-        Collision.trianglesOfVertex(corner).end());
-    holder = Branches.copyHolding(h, around);
-    if (holder >= 0 && !VisualIndirect[v])
-    {
-      VisualIndirect[v] = 1;
-      IndirectVisual.push_back(v);
-    }
+    // The usual case: a copy of its hexahedron holds its triangle.
+    if (holder == h)
+      return false;
+    VisualEmbedding.setPoint(v, holder, VisualEmbedding.localCoordinates(v));
+    return true;
+  }
+  // Else a copy holding a triangle around it.
+  const int triangle = Visual.collisionTriangleOf(v, Collision);
+  std::vector<int> around;
+  for (int corner : Collision.triangles()[triangle])
+    around.insert(around.end(),
+      Collision.trianglesOfVertex(corner).begin(),
+      Collision.trianglesOfVertex(corner).end());
+  holder = Branches.copyHolding(h, around);
+  if (holder >= 0 && !VisualIndirect[v])
+  {
+    VisualIndirect[v] = 1;
+    IndirectVisual.push_back(v);
   }
   if (holder < 0)
   {

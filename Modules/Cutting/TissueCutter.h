@@ -215,9 +215,9 @@ private:
   void updateSolver(const HexahedronDuplicationResult& duplication);
   std::vector<int> reembedCollision(const TissueCutReport& report);
   std::vector<int> reembedVisual(const TissueCutReport& report);
+  static constexpr int NoCollisionTriangle = -2;
   /// The copy of a visual vertex's hexahedron holding its collision
   /// triangle, -1 if none, NoCollisionTriangle if it has none.
-  static constexpr int NoCollisionTriangle = -2;
   int branchHolder(int visualVertex) const;
   bool moveToBranchCopy(int visualVertex);
   bool moveToBranchCopy(int visualVertex, int holder);

@@ -957,8 +957,8 @@ void CuttableVisualMesh::traceRegion(RegionCut& region,
       bulgedPoint(frame, corners[2]) } });
   for (CrossingPath& crossing : region.crossings)
     traceCut(region, scale, crossing, worker, context);
-  worker.deactivate(region);
   selectTouchedTriangles(region, worker);
+  worker.deactivate(region);
 }
 
 SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
@@ -1165,13 +1165,12 @@ void CuttableVisualMesh::linkCrossedTriangles(RegionCut& region,
   }
 }
 
-// The triangles of a region a traced path touches (to re-mesh) go to
-// region.touched; the others stay as they are.
-void CuttableVisualMesh::selectTouchedTriangles(RegionCut& region, RegionWorker& worker)
+// The triangles of the (active) region a traced path touches (to re-mesh)
+// go to region.touched; the others stay as they are.
+void CuttableVisualMesh::selectTouchedTriangles(RegionCut& region, const RegionWorker& worker)
 {
   // Per local vertex: 1 if a traced path passes it, 2 if a path crosses
   // an edge from it (then the edge is looked up).
-  worker.activate(region);
   region.newTriangles.reserve(region.triangles.size() + region.triangles.size() / 2);
   region.newLocalTriangles.reserve(region.newTriangles.capacity());
   std::vector<char> mark(region.vertices.size(), 0);
@@ -1215,7 +1214,6 @@ void CuttableVisualMesh::selectTouchedTriangles(RegionCut& region, RegionWorker&
       region.newLocalTriangles.push_back(region.localTriangles[i]);
     }
   }
-  worker.deactivate(region);
 }
 
 //------------------------------------------------------------------------------

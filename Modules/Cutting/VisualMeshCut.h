@@ -374,7 +374,7 @@ private:
     const std::vector<int>& globalTexture,
     const std::vector<int>& globalTriangle,
     CutContext& context);
-  void selectTouchedTriangles(RegionCut& region, RegionWorker& worker);
+  void selectTouchedTriangles(RegionCut& region, const RegionWorker& worker);
   void rebindSplitRegions(CutContext& context);
   void rebindRegion(RegionCut& region, RegionWorker& worker, const CutContext& context);
   std::vector<char> bindCrossingVertices(RegionCut& region,
