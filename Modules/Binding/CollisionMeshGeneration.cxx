@@ -158,6 +158,58 @@ public:
     return top > bottom;
   }
 
+  /// Where the line through q runs inside the tissue, when the middle of
+  /// its first and last crossing does not: the thickest of its inside
+  /// intervals (between crossings 2k and 2k + 1, sorted; crossings closer
+  /// than `merge` are one, a ray through an edge meets both triangles).
+  /// False when the middle is inside already, or the crossings do not
+  /// pair up.
+  bool thickestInsideInterval(const Vector2& q, double merge, double& bottom, double& top) const
+  {
+    const auto [i, j] = cellOf(q);
+    const Vector3 origin = lift(q, -2.0 * Depth - 1.0);
+    std::vector<double> heights;
+    for (int t : Buckets[static_cast<std::size_t>(j) * Columns + i])
+    {
+      const Triangle& tri = Mesh.triangles[t];
+      const double s = rayTriangleHit(
+        origin, N, Mesh.positions[tri[0]], Mesh.positions[tri[1]], Mesh.positions[tri[2]], 1e-9);
+      if (std::isfinite(s))
+      {
+        heights.push_back(s - 2.0 * Depth - 1.0);
+      }
+    }
+    std::sort(heights.begin(), heights.end());
+    std::vector<double> crossings;
+    for (double h : heights)
+    {
+      if (crossings.empty() || h - crossings.back() > merge)
+      {
+        crossings.push_back(h);
+      }
+    }
+    if (crossings.size() < 4 || crossings.size() % 2 != 0)
+    {
+      return false;
+    }
+    const double middle = 0.5 * (crossings.front() + crossings.back());
+    int thickest = 0;
+    for (std::size_t k = 0; k < crossings.size(); k += 2)
+    {
+      if (middle >= crossings[k] && middle <= crossings[k + 1])
+      {
+        return false;
+      }
+      if (crossings[k + 1] - crossings[k] > crossings[thickest + 1] - crossings[thickest])
+      {
+        thickest = static_cast<int>(k);
+      }
+    }
+    bottom = crossings[thickest];
+    top = crossings[thickest + 1];
+    return true;
+  }
+
 private:
   std::pair<int, int> cellOf(const Vector2& q) const
   {
@@ -1656,11 +1708,21 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     double middle = 0.0;
-    const double half = halfThickness(points[i], middle);
+    double half = halfThickness(points[i], middle);
     if (!(half > 0.0))
     {
       throw InvalidInputError(nameOf(visual) + ": collision vertex " + std::to_string(i) +
                               " finds no surface above and below it (outline too tight?)");
+    }
+    // A line through two layers (a tear's lips overlapping in projection,
+    // a staircase's overhang) can have its middle in the gap between them,
+    // outside the tissue: the vertex goes to the thickest layer instead.
+    double bottom = 0.0;
+    double top = 0.0;
+    if (surface.thickestInsideInterval(points[i], 1e-9 * extent, bottom, top))
+    {
+      middle = 0.5 * (bottom + top);
+      half = 0.5 * (top - bottom);
     }
     mesh.positions.push_back(surface.lift(points[i], middle));
     radii[i] = half;

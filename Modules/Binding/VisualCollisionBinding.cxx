@@ -1423,13 +1423,100 @@ std::vector<double> pieceOffsets(const TriangleMesh& mesh,
   return offset;
 }
 
+/// A paired visual vertex off the main piece of its slot's half (a stray
+/// vote, outvoted; see outvotedPairings).
+struct MisplacedPairing
+{
+  int collisionVertex = -1;
+  int slot = 0;
+  /// The main piece of the slot's half (most votes), where it goes.
+  int piece = -1;
+};
+
+/// A piece's votes decide its half when one half has all of them, or at
+/// least this many times the votes of every other (a stray vote: see
+/// repairMisplacedPairings).
+constexpr int StrayVoteMajority = 8;
+
+/// The half of a piece with votes from several halves: the one with at
+/// least StrayVoteMajority times the votes of every other (and a voter of
+/// a positive or negative slot), or -1.
+int outvotingHalf(const std::array<int, 3>& votes)
+{
+  for (int h = 0; h < 2; ++h)
+  {
+    bool outvotes = true;
+    for (int other = 0; other < 3; ++other)
+    {
+      outvotes = outvotes && (other == h || votes[h] >= StrayVoteMajority * votes[other]);
+    }
+    if (outvotes && votes[h] > 0)
+    {
+      return h;
+    }
+  }
+  return -1;
+}
+
+/// The positive and negative paired visual vertices of inner collision
+/// vertices that lie off the main piece of their slot's half (the piece
+/// with the most votes for it): on a piece the other half outvoted, or on
+/// a stray piece of their own half, which no path from the main piece
+/// reaches. Each with the main piece, where it goes.
+std::vector<MisplacedPairing> outvotedPairings(const VisualCollisionBinding& binding,
+  const TriangleMesh& collision,
+  const CollisionTopology& topology,
+  const TriangleMeshAdjacency& adjacency,
+  const std::vector<char>& onRim,
+  const std::vector<int>& piece,
+  const HalfVotes& votes)
+{
+  const std::vector<std::array<SurfaceHalf, PairedSlots>> halves =
+    pairedHalves(collision, topology);
+  std::array<int, 2> mainPiece{ { -1, -1 } };
+  for (int h = 0; h < 2; ++h)
+  {
+    for (std::size_t p = 0; p < votes.votes.size(); ++p)
+    {
+      if (votes.votes[p][h] > 0 &&
+          (mainPiece[h] < 0 || votes.votes[p][h] > votes.votes[mainPiece[h]][h]))
+      {
+        mainPiece[h] = static_cast<int>(p);
+      }
+    }
+  }
+  std::vector<MisplacedPairing> misplaced;
+  for (std::size_t c = 0; c < collision.vertexCount(); ++c)
+  {
+    for (int slot = 0; slot < 2 && !topology.borderVertex[c]; ++slot)
+    {
+      const int v = binding.pairedVisualVertices[c][slot];
+      const int h = halfIndex(halves[c][slot]);
+      const int main = h < 2 ? mainPiece[h] : -1;
+      if (v >= 0 && !onRim[v] && main >= 0 && piece[*adjacency.vertexTrianglesBegin(v)] != main)
+      {
+        misplaced.push_back({ static_cast<int>(c), slot, main });
+      }
+    }
+  }
+  return misplaced;
+}
+
 /// The half (SurfaceHalf: +1, -1, 0 for a cleft) of every triangle of the
 /// visual surface cut along the rim paths: each piece the rim paths bound
 /// takes the half of the collision vertices' paired visual vertices in it;
 /// a piece without any the side its surface lies on (pieceOffsets). A
 /// piece holding vertices of two halves means the rim paths do not
-/// separate them: InvalidInputError.
-std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
+/// separate them: InvalidInputError, unless one half outvotes the others
+/// (outvotingHalf): the outvoted pairings go to `misplaced`.
+struct SurfaceHalves
+{
+  std::vector<std::int8_t> half;           ///< per triangle
+  std::vector<int> piece;                  ///< per triangle, between the rim paths
+  std::vector<MisplacedPairing> misplaced; ///< outvoted pairings
+};
+
+SurfaceHalves surfaceHalves(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   const std::vector<std::vector<int>>& rimPaths,
   const TriangleMesh& collision,
@@ -1438,7 +1525,9 @@ std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
 {
   std::vector<char> onRim;
   int pieces = 0;
-  const std::vector<int> piece = piecesBetweenRimPaths(mesh, adjacency, rimPaths, onRim, pieces);
+  SurfaceHalves result;
+  result.piece = piecesBetweenRimPaths(mesh, adjacency, rimPaths, onRim, pieces);
+  const std::vector<int>& piece = result.piece;
   const HalfVotes votes =
     votesForHalves(binding, collision, topology, adjacency, piece, onRim, pieces);
   constexpr std::array<SurfaceHalf, 3> HalfOfIndex{
@@ -1450,8 +1539,9 @@ std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
   bool needOffsets = false;
   for (int p = 0; p < pieces; ++p)
   {
-    int chosen = -1;
-    for (int h = 0; h < 3; ++h)
+    int chosen = outvotingHalf(votes.votes[p]);
+    const bool outvoted = chosen >= 0;
+    for (int h = 0; h < 3 && !outvoted; ++h)
     {
       if (votes.votes[p][h] == 0)
       {
@@ -1489,12 +1579,80 @@ std::vector<std::int8_t> surfaceHalves(const TriangleMesh& mesh,
       }
     }
   }
-  std::vector<std::int8_t> half(mesh.triangleCount());
-  for (std::size_t t = 0; t < half.size(); ++t)
+  result.half.resize(mesh.triangleCount());
+  for (std::size_t t = 0; t < result.half.size(); ++t)
   {
-    half[t] = halfOfPiece[piece[t]];
+    result.half[t] = halfOfPiece[piece[t]];
   }
-  return half;
+  result.misplaced = outvotedPairings(binding, collision, topology, adjacency, onRim, piece, votes);
+  return result;
+}
+
+/// Stray votes: an inner collision vertex beside an opening of the visual
+/// outline that its border spans (a bay of a rough rim, a tear's gap) can
+/// see, along its normal, the opening's rounded shoulder beyond the rim
+/// paths, which lies on the other half. When the piece's other voters
+/// outvote it (outvotingHalf), that pairing moves to the vertex of the
+/// main piece of its own half (not on a rim path, not paired already)
+/// nearest to where the thickness puts it: the collision vertex plus its
+/// radius along its normal, on the slot's side. Returns false when the
+/// piece has no such vertex. A linear scan per moved pairing: they are a
+/// handful, and only on such surfaces.
+bool repairMisplacedPairings(VisualCollisionBinding& binding,
+  const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency,
+  const std::vector<int>& rimVertices,
+  const std::vector<int>& piece,
+  const TriangleMesh& collision,
+  const CollisionTopology& topology,
+  const std::vector<MisplacedPairing>& misplaced)
+{
+  std::vector<char> taken(mesh.vertexCount(), 0);
+  for (int v : rimVertices)
+  {
+    taken[v] = 1;
+  }
+  for (std::size_t c = 0; c < binding.pairedVisualVertices.size(); ++c)
+  {
+    for (int v : binding.pairedVisualVertices[c])
+    {
+      if (v >= 0)
+      {
+        taken[v] = 1;
+      }
+    }
+  }
+  for (const MisplacedPairing& m : misplaced)
+  {
+    const int c = m.collisionVertex;
+    const double sign = m.slot == 0 ? 1.0 : -1.0;
+    const Vector3 expected =
+      collision.positions[c] + sign * binding.collisionRadii[c] * topology.vertexNormals[c];
+    int best = -1;
+    double bestDistance = Infinity;
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+    {
+      const int* first = adjacency.vertexTrianglesBegin(static_cast<int>(v));
+      if (taken[v] || first == adjacency.vertexTrianglesEnd(static_cast<int>(v)) ||
+          piece[*first] != m.piece)
+      {
+        continue;
+      }
+      const double d = (mesh.positions[v] - expected).squaredNorm();
+      if (d < bestDistance)
+      {
+        bestDistance = d;
+        best = static_cast<int>(v);
+      }
+    }
+    if (best < 0)
+    {
+      return false;
+    }
+    taken[best] = 1;
+    binding.pairedVisualVertices[c][m.slot] = best;
+  }
+  return true;
 }
 
 /// The path of each collision edge and side label (a border edge's one
@@ -2288,8 +2446,34 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
     }
   }
   const TriangleMeshAdjacency rimmedAdjacency(rimmed.mesh);
-  const std::vector<std::int8_t> half =
+  const SurfaceHalves halves =
     surfaceHalves(rimmed.mesh, rimmedAdjacency, rimmed.pathVertices, collision, binding, topology);
+  const std::vector<std::int8_t>& half = halves.half;
+  if (const std::vector<MisplacedPairing>& misplaced = halves.misplaced; !misplaced.empty())
+  {
+    std::vector<int> rimVertices;
+    for (const std::vector<int>& path : rimmed.pathVertices)
+    {
+      rimVertices.insert(rimVertices.end(), path.begin(), path.end());
+    }
+    if (!repairMisplacedPairings(binding,
+          rimmed.mesh,
+          rimmedAdjacency,
+          rimVertices,
+          halves.piece,
+          collision,
+          topology,
+          misplaced))
+    {
+      throw InvalidInputError("collision mesh '" + collision.name + "': collision vertex " +
+                              std::to_string(misplaced.front().collisionVertex) +
+                              " finds no visual vertex on its side of the rim paths");
+    }
+    for (PathRequest& r : innerRequests)
+    {
+      setRequestEnds(binding, topology, r);
+    }
+  }
   const SideRegions regions = sideRegions(rimmed, rimmedAdjacency, half);
   std::vector<SurfacePath> innerPaths;
   std::vector<int> innerDetours;

@@ -95,12 +95,14 @@ TriangleMesh readTriangleMesh(const std::string& path, const MeshImportOptions& 
         "; .vtp .vtk .vtu through vtkThinTissueMeshReader)");
   }
   TriangleMesh mesh;
-  if (extension == ".obj")
+  if (extension == ".obj" || extension == ".ply")
   {
     std::ifstream in(path, std::ios::binary);
     std::ostringstream buffer;
     buffer << in.rdbuf();
-    mesh = parseObj(buffer.str(), path);
+    mesh = extension == ".obj"
+             ? parseObj(buffer.str(), path)
+             : detail::parsePly(buffer.str(), path, options.weldCoincidentVertices);
   }
   else
   {
