@@ -976,14 +976,15 @@ double halfThicknessAt(const ProjectedSurface& surface, const Vector2& q, double
 Vector2 movedIn(const ProjectedSurface& surface,
   const Vector2& q,
   const Vector2& inward,
-  double extent)
+  double extent,
+  double maximumDepth = Infinity)
 {
-  double depth = 1e-3 * extent;
+  double depth = std::min(1e-3 * extent, maximumDepth);
   double middle = 0.0;
   for (int iteration = 0; iteration < 12; ++iteration)
   {
     const double half = halfThicknessAt(surface, q + depth * inward, middle);
-    depth = half > 0.0 ? std::min(half, 0.25 * extent) : 1.5 * depth;
+    depth = std::min(half > 0.0 ? std::min(half, 0.25 * extent) : 1.5 * depth, maximumDepth);
   }
   return q + depth * inward;
 }
@@ -1016,6 +1017,7 @@ Vector2 ontoTissue(const ProjectedSurface& surface, Vector2 q, double thinnest, 
 /// reaches it, so that the border spheres reach the rim.
 std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
   const std::vector<Vector2>& silhouette,
+  const std::vector<Loop>& otherLoops,
   int borderCount,
   double extent,
   double largestThickness)
@@ -1032,7 +1034,11 @@ std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
       const Vector2& previous = border[(i + border.size() - 1) % border.size()];
       const Vector2& next = border[(i + 1) % border.size()];
       const Vector2 along = (next - previous).normalized();
-      moved[i] = movedIn(surface, border[i], Vector2(-along.y(), along.x()), extent);
+      // Less than half the way to another loop of the outline (a hole
+      // about a thickness from the rim): moved in from both sides, the two
+      // borders would cross.
+      const double room = 0.45 * distanceToLoops(otherLoops, border[i]);
+      moved[i] = movedIn(surface, border[i], Vector2(-along.y(), along.x()), extent, room);
     }
     // Moving in gathers points on concave stretches: spread them evenly
     // again along the moved outline (its corners kept).
@@ -1278,7 +1284,13 @@ std::vector<Triangle> triangulateInside(const std::vector<Vector2>& points,
   {
     for (std::size_t i = 0; i < border.size(); ++i)
     {
-      triangulation.insert_constraint(handles[first + i], handles[first + (i + 1) % border.size()]);
+      const auto from = handles[first + i];
+      const auto to = handles[first + (i + 1) % border.size()];
+      if (from == to) // a constraint from a vertex to itself crashes CGAL
+      {
+        throw InvalidInputError(name + ": collision vertices coincide (outline too tight)");
+      }
+      triangulation.insert_constraint(from, to);
     }
     first += border.size();
   }
@@ -1666,20 +1678,25 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
   const int borderCount = borderVertexCountFor(vertexCount);
   const std::vector<int> counts = borderCountsOf(outline, borderCount);
   std::vector<Loop> borders;
-  std::vector<Vector2> points;
-  int placed = 0;
   for (std::size_t k = 0; k < outline.size(); ++k)
   {
+    std::vector<Loop> others = outline;
+    others.erase(others.begin() + static_cast<std::ptrdiff_t>(k));
     const Loop border =
-      placeBorder(surface, outline[k], counts[k], extent, result.largestThickness);
+      placeBorder(surface, outline[k], others, counts[k], extent, result.largestThickness);
     borders.push_back(followBays(surface,
       outline[k],
       border,
       extent,
       ThinnestShare * result.largestThickness,
       std::max(2, counts[k] / 3)));
-    points.insert(points.end(), borders.back().begin(), borders.back().end());
-    placed += static_cast<int>(borders.back().size());
+  }
+  std::vector<Vector2> points;
+  int placed = 0;
+  for (const Loop& border : borders)
+  {
+    points.insert(points.end(), border.begin(), border.end());
+    placed += static_cast<int>(border.size());
   }
 
   // 3. Interior lattice with the count that makes vertexCount in all (the

@@ -1595,22 +1595,25 @@ SurfaceHalves surfaceHalves(const TriangleMesh& mesh,
 /// outvote it (outvotingHalf), that pairing moves to the vertex of the
 /// main piece of its own half (not on a rim path, not paired already)
 /// nearest to where the thickness puts it: the collision vertex plus its
-/// radius along its normal, on the slot's side. Returns false when the
-/// piece has no such vertex. A linear scan per moved pairing: they are a
-/// handful, and only on such surfaces.
+/// radius along its normal, on the slot's side. Returns whether any moved;
+/// InvalidInputError when the piece has no such vertex. A linear scan per
+/// moved pairing: they are a handful, and only on such surfaces.
 bool repairMisplacedPairings(VisualCollisionBinding& binding,
-  const TriangleMesh& mesh,
+  const RemeshedSurface& rimmed,
   const TriangleMeshAdjacency& adjacency,
-  const std::vector<int>& rimVertices,
-  const std::vector<int>& piece,
+  const SurfaceHalves& halves,
   const TriangleMesh& collision,
-  const CollisionTopology& topology,
-  const std::vector<MisplacedPairing>& misplaced)
+  const CollisionTopology& topology)
 {
+  const TriangleMesh& mesh = rimmed.mesh;
+  const std::vector<int>& piece = halves.piece;
   std::vector<char> taken(mesh.vertexCount(), 0);
-  for (int v : rimVertices)
+  for (const std::vector<int>& path : rimmed.pathVertices)
   {
-    taken[v] = 1;
+    for (int v : path)
+    {
+      taken[v] = 1;
+    }
   }
   for (std::size_t c = 0; c < binding.pairedVisualVertices.size(); ++c)
   {
@@ -1622,7 +1625,7 @@ bool repairMisplacedPairings(VisualCollisionBinding& binding,
       }
     }
   }
-  for (const MisplacedPairing& m : misplaced)
+  for (const MisplacedPairing& m : halves.misplaced)
   {
     const int c = m.collisionVertex;
     const double sign = m.slot == 0 ? 1.0 : -1.0;
@@ -1647,12 +1650,14 @@ bool repairMisplacedPairings(VisualCollisionBinding& binding,
     }
     if (best < 0)
     {
-      return false;
+      throw InvalidInputError("collision mesh '" + collision.name + "': collision vertex " +
+                              std::to_string(c) + " finds no visual vertex on its side of the " +
+                              "rim paths");
     }
     taken[best] = 1;
     binding.pairedVisualVertices[c][m.slot] = best;
   }
-  return true;
+  return !halves.misplaced.empty();
 }
 
 /// The path of each collision edge and side label (a border edge's one
@@ -2438,37 +2443,16 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
       rimDetours[k] += uncrossingDetours[k];
     }
   }
-  if (trimRimDeadEnds(rimmed.pathVertices, rimRequests, topology, binding.pairedVisualVertices) > 0)
-  {
-    for (PathRequest& r : innerRequests)
-    {
-      setRequestEnds(binding, topology, r);
-    }
-  }
+  const bool trimmed =
+    trimRimDeadEnds(rimmed.pathVertices, rimRequests, topology, binding.pairedVisualVertices) > 0;
   const TriangleMeshAdjacency rimmedAdjacency(rimmed.mesh);
   const SurfaceHalves halves =
     surfaceHalves(rimmed.mesh, rimmedAdjacency, rimmed.pathVertices, collision, binding, topology);
   const std::vector<std::int8_t>& half = halves.half;
-  if (const std::vector<MisplacedPairing>& misplaced = halves.misplaced; !misplaced.empty())
+  const bool repaired =
+    repairMisplacedPairings(binding, rimmed, rimmedAdjacency, halves, collision, topology);
+  if (trimmed || repaired)
   {
-    std::vector<int> rimVertices;
-    for (const std::vector<int>& path : rimmed.pathVertices)
-    {
-      rimVertices.insert(rimVertices.end(), path.begin(), path.end());
-    }
-    if (!repairMisplacedPairings(binding,
-          rimmed.mesh,
-          rimmedAdjacency,
-          rimVertices,
-          halves.piece,
-          collision,
-          topology,
-          misplaced))
-    {
-      throw InvalidInputError("collision mesh '" + collision.name + "': collision vertex " +
-                              std::to_string(misplaced.front().collisionVertex) +
-                              " finds no visual vertex on its side of the rim paths");
-    }
     for (PathRequest& r : innerRequests)
     {
       setRequestEnds(binding, topology, r);

@@ -500,3 +500,14 @@ TEST(SegmentationSweep, ABinaryPlyOfASegmentationReadsBack)
   }
   EXPECT_EQ(read.triangles, mesh.triangles);
 }
+// A hole about a thickness from the rim (the coarse longitudinal tear of
+// seed 1011: the tear's gap beside the inner rim): the outline's border and
+// the hole's, each moved in by the local half thickness, moved toward each
+// other and crossed ("its outline crosses itself"). A border point now
+// moves in less than half the way to another loop of the outline, and the
+// tear prepares, binds and takes a press.
+TEST(SegmentationSweep, AHoleNearTheRimKeepsItsBorderApart)
+{
+  EXPECT_EQ(
+    prepareAndCheck(segmented(tissueModel("LongitudinalTear"), sweepCase(1011, true)), true), "");
+}
