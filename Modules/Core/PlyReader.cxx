@@ -204,6 +204,19 @@ public:
     return Format == PlyFormat::Ascii ? nextWord() : nextBinary(type);
   }
 
+  /// The length of a list: a count of the list's length type.
+  std::size_t nextLength(const PlyScalar& type)
+  {
+    const double length = next(type);
+    if (!(length >= 0.0 && length <= 1e9) || length != std::floor(length))
+    {
+      std::ostringstream text;
+      text << "PLY data: bad list length " << length;
+      throw FileError(Path, text.str());
+    }
+    return static_cast<std::size_t>(length);
+  }
+
 private:
   double nextWord()
   {
@@ -319,7 +332,7 @@ PlyVertices readVertices(PlyBody& body, const PlyElement& element, const std::st
       const PlyProperty& property = element.properties[k];
       if (property.list)
       {
-        const auto length = static_cast<std::size_t>(body.next(property.countType));
+        const std::size_t length = body.nextLength(property.countType);
         for (std::size_t i = 0; i < length; ++i)
         {
           body.next(property.type);
@@ -369,9 +382,9 @@ std::vector<Triangle> readFaces(PlyBody& body, const PlyElement& element, const 
         body.next(property.type);
         continue;
       }
-      const double length = body.next(property.countType);
+      const std::size_t length = body.nextLength(property.countType);
       corners.clear();
-      for (double i = 0; i < length; ++i)
+      for (std::size_t i = 0; i < length; ++i)
       {
         const double index = body.next(property.type);
         if (static_cast<int>(k) == indices)
@@ -461,8 +474,8 @@ TriangleMesh parsePly(const std::string& bytes, const std::string& path, bool we
       {
         for (const PlyProperty& property : element.properties)
         {
-          const double length = property.list ? body.next(property.countType) : 1.0;
-          for (double k = 0; k < length; ++k)
+          const std::size_t length = property.list ? body.nextLength(property.countType) : 1;
+          for (std::size_t k = 0; k < length; ++k)
           {
             body.next(property.type);
           }

@@ -302,6 +302,8 @@ TEST(MeshImport, MalformedPlyGetsClearErrors)
                     "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
                     "property float y\nend_header\n0 0\n"),
     "without x, y and z");
+  expectFileError(writeTemporaryFile("length.ply", header + "0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n"),
+    "bad list length -3");
   std::string truncated = binaryTetraPly(false);
   truncated.resize(truncated.size() - 5);
   expectFileError(writeTemporaryFile("truncated.ply", truncated), "the file ends early");
