@@ -139,22 +139,14 @@ public:
   /// q; false when the line misses the surface.
   bool crossing(const Vector2& q, double& bottom, double& top) const
   {
-    const auto [i, j] = cellOf(q);
-    const Vector3 origin = lift(q, -2.0 * Depth - 1.0);
     bottom = Infinity;
     top = -Infinity;
-    for (int t : Buckets[static_cast<std::size_t>(j) * Columns + i])
-    {
-      const Triangle& tri = Mesh.triangles[t];
-      const double s = rayTriangleHit(
-        origin, N, Mesh.positions[tri[0]], Mesh.positions[tri[1]], Mesh.positions[tri[2]], 1e-9);
-      if (std::isfinite(s))
+    forEachCrossing(q,
+      [&](double height)
       {
-        const double height = s - 2.0 * Depth - 1.0;
         bottom = std::min(bottom, height);
         top = std::max(top, height);
-      }
-    }
+      });
     return top > bottom;
   }
 
@@ -166,19 +158,8 @@ public:
   /// pair up.
   bool thickestInsideInterval(const Vector2& q, double merge, double& bottom, double& top) const
   {
-    const auto [i, j] = cellOf(q);
-    const Vector3 origin = lift(q, -2.0 * Depth - 1.0);
     std::vector<double> heights;
-    for (int t : Buckets[static_cast<std::size_t>(j) * Columns + i])
-    {
-      const Triangle& tri = Mesh.triangles[t];
-      const double s = rayTriangleHit(
-        origin, N, Mesh.positions[tri[0]], Mesh.positions[tri[1]], Mesh.positions[tri[2]], 1e-9);
-      if (std::isfinite(s))
-      {
-        heights.push_back(s - 2.0 * Depth - 1.0);
-      }
-    }
+    forEachCrossing(q, [&](double height) { heights.push_back(height); });
     std::sort(heights.begin(), heights.end());
     std::vector<double> crossings;
     for (double h : heights)
@@ -211,6 +192,24 @@ public:
   }
 
 private:
+  /// f(height) for each crossing of the line through q with the surface.
+  template <class Function>
+  void forEachCrossing(const Vector2& q, Function&& f) const
+  {
+    const auto [i, j] = cellOf(q);
+    const Vector3 origin = lift(q, -2.0 * Depth - 1.0);
+    for (int t : Buckets[static_cast<std::size_t>(j) * Columns + i])
+    {
+      const Triangle& tri = Mesh.triangles[t];
+      const double s = rayTriangleHit(
+        origin, N, Mesh.positions[tri[0]], Mesh.positions[tri[1]], Mesh.positions[tri[2]], 1e-9);
+      if (std::isfinite(s))
+      {
+        f(s - 2.0 * Depth - 1.0);
+      }
+    }
+  }
+
   std::pair<int, int> cellOf(const Vector2& q) const
   {
     const int i = static_cast<int>(std::floor((q.x() - Low.x()) / CellSize));

@@ -1502,20 +1502,22 @@ std::vector<MisplacedPairing> outvotedPairings(const VisualCollisionBinding& bin
   return misplaced;
 }
 
+/// The visual surface cut along the rim paths, by triangle.
+struct SurfaceHalves
+{
+  std::vector<std::int8_t> half;           ///< per triangle
+  std::vector<int> piece;                  ///< per triangle, between the rim paths
+  std::vector<MisplacedPairing> misplaced; ///< pairings off their half's main piece
+};
+
 /// The half (SurfaceHalf: +1, -1, 0 for a cleft) of every triangle of the
 /// visual surface cut along the rim paths: each piece the rim paths bound
 /// takes the half of the collision vertices' paired visual vertices in it;
 /// a piece without any the side its surface lies on (pieceOffsets). A
 /// piece holding vertices of two halves means the rim paths do not
 /// separate them: InvalidInputError, unless one half outvotes the others
-/// (outvotingHalf): the outvoted pairings go to `misplaced`.
-struct SurfaceHalves
-{
-  std::vector<std::int8_t> half;           ///< per triangle
-  std::vector<int> piece;                  ///< per triangle, between the rim paths
-  std::vector<MisplacedPairing> misplaced; ///< outvoted pairings
-};
-
+/// (outvotingHalf); the pairings off their half's main piece are listed
+/// (outvotedPairings) for repairMisplacedPairings.
 SurfaceHalves surfaceHalves(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   const std::vector<std::vector<int>>& rimPaths,
