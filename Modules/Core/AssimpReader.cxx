@@ -56,9 +56,13 @@ TriangleMesh readWithAssimp(const std::string& path, const MeshImportOptions& op
   Assimp::Importer importer;
   importer.SetPropertyInteger(
     AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  // Validation first: a loader that misreads its file (assimp's PLY loader
+  // did, on a body starting with '\n') then gives an error instead of
+  // faces with indices out of range, on which the triangulation's
+  // assertion aborts the process.
   const aiScene* scene = importer.ReadFile(path,
-    aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-      aiProcess_PreTransformVertices);
+    aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+      aiProcess_SortByPType | aiProcess_PreTransformVertices);
   if (scene == nullptr)
   {
     throw FileError(path, std::string("cannot be parsed: ") + importer.GetErrorString());

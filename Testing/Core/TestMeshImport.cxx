@@ -1,4 +1,5 @@
 #include "MeshImport.h"
+#include "MeshImportPrivate.h"
 #include "MeshValidation.h"
 #include "ThinTissueError.h"
 #include "ThinTissueTestSupport.h"
@@ -281,6 +282,23 @@ TEST(MeshImport, BinaryPlyInEitherByteOrder)
     EXPECT_EQ(tetra.positions[3], Vector3(0.0, 0.0, 1.0)) << name;
     ASSERT_EQ(tetra.normals.size(), 4u) << name;
     EXPECT_TRUE(validateTriangleMesh(tetra).isClosedOutwardSingleSurface()) << name;
+  }
+}
+
+// The assimp back-end validates what its loaders read: the same file
+// through assimp's PLY loader is an error naming it, not an abort.
+TEST(MeshImport, AssimpRefusesWhatItsLoaderMisread)
+{
+  const std::string path = writeTemporaryFile("tetra-assimp.ply", binaryTetraPly(false));
+  try
+  {
+    detail::readWithAssimp(path, {});
+    ADD_FAILURE() << "no error";
+  }
+  catch (const FileError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("Validation failed"), std::string::npos)
+      << error.what();
   }
 }
 
