@@ -123,6 +123,24 @@ TriangleMesh segmented(const TriangleMesh& tissue, const SweepCase& c)
   return fromPolyData(filter->GetOutput(), tissue.name + " segmented");
 }
 
+/// A sweep case as the preparation sees it (tunnels closed) and its
+/// collision mid-surface with the 105 vertices.
+struct SweepMidSurface
+{
+  TriangleMesh visual;
+  GeneratedCollisionMesh generated;
+};
+
+SweepMidSurface sweepMidSurface(const std::string& tissue, const SweepCase& c)
+{
+  SweepMidSurface result;
+  result.visual = closeSmallTunnels(segmented(tissueModel(tissue), c));
+  CollisionMeshSettings settings;
+  settings.vertexCount = 105;
+  result.generated = makeCollisionMidSurface(result.visual, settings);
+  return result;
+}
+
 /// A meniscus prepared from a segmentation, simulated: its lowest tenth
 /// of nodes held (it rests on the tibia), a probe of 1.5 mm radius pressed
 /// 1.5 mm into its top where it is thickest, and held. The
@@ -404,11 +422,8 @@ TEST(SegmentationSweep, WedgeRimsBeyondFourRadiiAreReached)
 // largest thickness, as border vertices do.
 TEST(SegmentationSweep, NoCollisionVertexStandsOnASliverOfTissue)
 {
-  const TriangleMesh visual =
-    closeSmallTunnels(segmented(tissueModel("LongitudinalTear"), sweepCase(1001)));
-  CollisionMeshSettings settings;
-  settings.vertexCount = 105;
-  const GeneratedCollisionMesh generated = makeCollisionMidSurface(visual, settings);
+  const GeneratedCollisionMesh generated =
+    sweepMidSurface("LongitudinalTear", sweepCase(1001)).generated;
   const std::vector<double>& radii = generated.mesh.pointAttributes.get("Radius").values;
   const auto thinnest = std::min_element(radii.begin(), radii.end());
   EXPECT_GE(*thinnest, 0.0249 * generated.largestThickness)
@@ -425,11 +440,8 @@ TEST(SegmentationSweep, NoCollisionVertexStandsOnASliverOfTissue)
 // a press.
 TEST(SegmentationSweep, ASlitNarrowerThanAShadowCellIsOneHole)
 {
-  const TriangleMesh visual =
-    closeSmallTunnels(segmented(tissueModel("LongitudinalTear"), sweepCase(1004)));
-  CollisionMeshSettings settings;
-  settings.vertexCount = 105;
-  const TriangleMesh collision = makeCollisionMidSurface(visual, settings).mesh;
+  const TriangleMesh collision =
+    sweepMidSurface("LongitudinalTear", sweepCase(1004)).generated.mesh;
   const TriangleMeshAdjacency adjacency(collision);
   const int eulerCharacteristic = static_cast<int>(collision.vertexCount()) -
                                   static_cast<int>(adjacency.edgeCount()) +
@@ -459,11 +471,9 @@ TEST(SegmentationSweep, AnOutvotedPairingMovesToItsOwnHalf)
 // press.
 TEST(SegmentationSweep, AVertexOverTwoLayersGoesToTheThickest)
 {
-  const TriangleMesh visual =
-    closeSmallTunnels(segmented(tissueModel("RadialTear"), sweepCase(1006)));
-  CollisionMeshSettings settings;
-  settings.vertexCount = 105;
-  const TriangleMesh collision = makeCollisionMidSurface(visual, settings).mesh;
+  const SweepMidSurface prepared = sweepMidSurface("RadialTear", sweepCase(1006));
+  const TriangleMesh& visual = prepared.visual;
+  const TriangleMesh& collision = prepared.generated.mesh;
   // The binding's test: winding number at least 1/2, or within a
   // thousandth of the diagonal of the surface (border vertices on the rim).
   const double tolerance = 1e-3 * visual.boundingBox().diagonal().norm();
