@@ -1,6 +1,7 @@
 #include "ContactKernels.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace thintissue
@@ -512,11 +513,13 @@ void findVertexTriangles(const ThickMeshView& a,
       const double distance =
         pointTriangleContact(x, 0.0, pb[tri[0]], pb[tri[1]], pb[tri[2]], 0.0, 0.0, 0.0, 0.0)
           .distance;
-      if (distance < radius + b.contactDistance + largestRadius(rb, tri) + reach)
+      const double clearance = distance - (radius + b.contactDistance + largestRadius(rb, tri));
+      if (clearance < reach)
       {
         candidates.vertexTriangles.push_back(t);
         candidates.vertexTriangleBoxes.push_back(
           TriangleBvh::triangleBox(pb, tri, rb, b.bvh->contactDistance()));
+        candidates.vertexTriangleClearances.push_back(clearance);
       }
     });
 }
@@ -542,9 +545,11 @@ bool findTrianglesOfA(const ThickMeshView& a,
       const double distance =
         pointTriangleContact(x, 0.0, pa[tri[0]], pa[tri[1]], pa[tri[2]], 0.0, 0.0, 0.0, 0.0)
           .distance;
-      if (distance < radius + a.contactDistance + largestRadius(ra, tri) + reach)
+      const double clearance = distance - (radius + a.contactDistance + largestRadius(ra, tri));
+      if (clearance < reach)
       {
         candidates.trianglesOfA.push_back(t);
+        candidates.triangleOfAClearances.push_back(clearance);
       }
     });
   return candidates.trianglesOfA.size() > before;
@@ -576,13 +581,16 @@ void findEdgePairsOf(const ThickMeshView& a,
         const int a0 = triA[i];
         const int a1 = triA[(i + 1) % 3];
         const double reachA = std::max(ra[a0], ra[a1]) + a.contactDistance;
-        if (!(ownedA & (1u << i)) || !edgeBox(pa[a0], pa[a1], reachA).intersects(query) ||
-            !(closestPointsBetweenSegments(pa[a0], pa[a1], pb[b0], pb[b1]).distance <
-              reachA + reachB + reach))
+        if (!(ownedA & (1u << i)) || !edgeBox(pa[a0], pa[a1], reachA).intersects(query))
         {
           continue;
         }
-        candidates.edgePairs.push_back({ a0, a1, ta, b0, b1, tb, boxB });
+        const double clearance =
+          closestPointsBetweenSegments(pa[a0], pa[a1], pb[b0], pb[b1]).distance - (reachA + reachB);
+        if (clearance < reach)
+        {
+          candidates.edgePairs.push_back({ a0, a1, ta, b0, b1, tb, boxB, clearance });
+        }
       }
     });
 }
@@ -603,6 +611,8 @@ void findCandidates(const ThickMeshView& a,
   candidates.vertexStart.assign(1, 0);
   candidates.vertexTriangles.clear();
   candidates.vertexTriangleBoxes.clear();
+  candidates.vertexTriangleClearances.clear();
+  candidates.movesOfA.assign(a.positions->size(), 0.0);
   for (int v = 0; v < countA; ++v)
   {
     findVertexTriangles(a, b, v, reach, candidates);
@@ -611,6 +621,7 @@ void findCandidates(const ThickMeshView& a,
   candidates.verticesOfB.clear();
   candidates.triangleStart.assign(1, 0);
   candidates.trianglesOfA.clear();
+  candidates.triangleOfAClearances.clear();
   const BoundingBox boundsOfA = inflated(a.bvh->bounds(), reach);
   const int countB = static_cast<int>(b.positions->size());
   for (int w = 0; w < countB; ++w)
@@ -638,11 +649,12 @@ void findCandidates(const ThickMeshView& a,
 }
 
 /// Whether the candidates still hold: the same meshes, no vertex of A
-/// further than the margin from where it was.
+/// further than the margin from where it was (how far each is goes to
+/// candidates.movesOfA).
 bool candidatesHold(const ThickMeshView& a,
   const ThickMeshView& b,
   double margin,
-  const StaticPairCandidates& candidates)
+  StaticPairCandidates& candidates)
 {
   if (a.identity == 0 || candidates.identityOfA != a.identity || candidates.treeOfB != b.bvh ||
       candidates.margin != margin || candidates.positionsOfA.size() != a.positions->size())
@@ -653,12 +665,24 @@ bool candidatesHold(const ThickMeshView& a,
   const auto& positions = *a.positions;
   for (std::size_t v = 0; v < positions.size(); ++v)
   {
-    if ((positions[v] - candidates.positionsOfA[v]).squaredNorm() > squaredMargin)
+    const double squaredMove = (positions[v] - candidates.positionsOfA[v]).squaredNorm();
+    if (squaredMove > squaredMargin)
     {
       return false;
     }
+    candidates.movesOfA[v] = std::sqrt(squaredMove);
   }
   return true;
+}
+
+/// A candidate pair whose clearance when found exceeds how far its moving
+/// features have gone since cannot touch (a distance between a moving and
+/// a fixed feature changes by at most the move): skipped. The allowance
+/// (SearchSlack, relative to the margin) keeps rounding from skipping a
+/// pair that touches.
+bool outOfReach(double clearance, double move, double margin)
+{
+  return clearance > move + (SearchSlack - 1.0) * margin;
 }
 
 /// Vertex v of A against its candidate triangles of B: what
@@ -679,10 +703,12 @@ void vertexCandidateContact(const ThickMeshView& a,
   const double radius = (*a.radii)[v] + a.contactDistance;
   const double thickness = radius + b.contactDistance;
   const BoundingBox query = sphereBox(a, v, radius);
+  const double move = candidates.movesOfA[v];
   DeepestPointContact deepest;
   for (int k = first; k < end; ++k)
   {
-    if (candidates.vertexTriangleBoxes[k].intersects(query))
+    if (!outOfReach(candidates.vertexTriangleClearances[k], move, candidates.margin) &&
+        candidates.vertexTriangleBoxes[k].intersects(query))
     {
       keepDeeperPointContact(x, thickness, b, candidates.vertexTriangles[k], deepest);
     }
@@ -709,11 +735,14 @@ void vertexOfBCandidateContact(const ThickMeshView& a,
   const auto& pa = *a.positions;
   const auto& ra = *a.radii;
   DeepestPointContact deepest;
+  const auto& moves = candidates.movesOfA;
   for (int i = candidates.triangleStart[k]; i < candidates.triangleStart[k + 1]; ++i)
   {
     const int t = candidates.trianglesOfA[i];
     const Triangle& tri = (*a.triangles)[t];
-    if (TriangleBvh::triangleBox(pa, tri, ra, a.bvh->contactDistance()).intersects(query))
+    const double move = std::max({ moves[tri[0]], moves[tri[1]], moves[tri[2]] });
+    if (!outOfReach(candidates.triangleOfAClearances[i], move, candidates.margin) &&
+        TriangleBvh::triangleBox(pa, tri, ra, a.bvh->contactDistance()).intersects(query))
     {
       keepDeeperPointContact(x, thickness, a, t, deepest);
     }
@@ -732,9 +761,11 @@ void edgeCandidateContacts(const ThickMeshView& a,
 {
   const auto& pa = *a.positions;
   const auto& ra = *a.radii;
+  const auto& moves = candidates.movesOfA;
   for (const StaticPairCandidates::EdgePair& e : candidates.edgePairs)
   {
-    if (workspace.touchingA[e.a0] || workspace.touchingA[e.a1] || workspace.touchingB[e.b0] ||
+    if (outOfReach(e.clearance, std::max(moves[e.a0], moves[e.a1]), candidates.margin) ||
+        workspace.touchingA[e.a0] || workspace.touchingA[e.a1] || workspace.touchingB[e.b0] ||
         workspace.touchingB[e.b1])
     {
       continue;

@@ -124,12 +124,18 @@ struct StaticPairCandidates
   std::vector<int> vertexStart;
   std::vector<int> vertexTriangles;
   std::vector<BoundingBox> vertexTriangleBoxes;
+  /// Per candidate pair (vertexTriangles, trianglesOfA, edgePairs): how far
+  /// its features were from touching when found (distance less the largest
+  /// thickness they can have). A pair whose features moved less than that
+  /// since cannot touch, and is skipped before any box or distance test.
+  std::vector<double> vertexTriangleClearances;
   /// B's vertices near A, ascending, and A's triangles near each:
   /// triangleOfA[triangleStart[k], triangleStart[k + 1]) for verticesOfB[k],
   /// in the order A's tree visits them (refitting keeps that order).
   std::vector<int> verticesOfB;
   std::vector<int> triangleStart;
   std::vector<int> trianglesOfA;
+  std::vector<double> triangleOfAClearances;
   /// Owned edges of A and B (as their owning triangles orient them) that
   /// may come within reach, with B's edge box.
   struct EdgePair
@@ -137,8 +143,12 @@ struct StaticPairCandidates
     int a0 = 0, a1 = 0, triangleA = 0;
     int b0 = 0, b1 = 0, triangleB = 0;
     BoundingBox boxB;
+    double clearance = 0.0;
   };
   std::vector<EdgePair> edgePairs;
+  /// Per vertex of A: how far it is from where it was when found (this
+  /// step's).
+  std::vector<double> movesOfA;
   int searches = 0; ///< times the candidates were found (for tests, benchmarks)
 };
 
