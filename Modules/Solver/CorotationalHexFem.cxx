@@ -1,5 +1,7 @@
 #include "CorotationalHexFem.h"
 
+#include "BlockSymmetricProduct.h"
+
 #include "LinearAlgebraLibrary.h"
 #include "ThinTissueError.h"
 
@@ -266,6 +268,8 @@ struct CorotationalHexFem::LinearSystem
   std::vector<int> dofOfNode; // first DOF of a simulated node, else -1
   int dofCount = 0;
   SparseMatrix matrix; // upper triangle
+  /// y = A x by its 3x3 node blocks (analysed with each pattern).
+  BlockSymmetricProduct blockProduct;
   /// Per element, block (a, b) entry (i, j) -> value index, or -1.
   std::vector<std::array<int, 576>> elementOffsets;
   std::vector<int> diagonalOffsets;
@@ -834,6 +838,7 @@ void CorotationalHexFem::prepareSystem()
     }
   }
   buildPattern();
+  s.blockProduct.analyse(s.matrix);
   colourElements();
   s.rhs.resize(s.dofCount);
   s.solution.setZero(s.dofCount);
@@ -1487,17 +1492,16 @@ bool CorotationalHexFem::iteratePreconditioned(Eigen::VectorXd& x,
   const Preconditioner& precondition)
 {
   LinearSystem& s = *System;
-  const auto A = s.matrix.selfadjointView<Eigen::Upper>();
   const double target = Settings.conjugateGradientTolerance * s.rhs.norm();
   x = s.previousSolution;
-  s.product.noalias() = A * x;
+  s.blockProduct.multiply(s.matrix, x, s.product);
   s.residual = s.rhs - s.product;
   precondition(s.residual, s.preconditioned);
   s.direction = s.preconditioned;
   double rho = s.residual.dot(s.preconditioned);
   for (iterations = 0; iterations < limit && s.residual.norm() > target;)
   {
-    s.product.noalias() = A * s.direction;
+    s.blockProduct.multiply(s.matrix, s.direction, s.product);
     const double step = rho / s.direction.dot(s.product);
     x += step * s.direction;
     s.residual -= step * s.product;
@@ -1887,7 +1891,7 @@ const Eigen::VectorXd& CorotationalHexFem::previousSystemSolution() const
 
 void CorotationalHexFem::multiplySystem(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
 {
-  y.noalias() = System->matrix.selfadjointView<Eigen::Upper>() * x;
+  System->blockProduct.multiply(System->matrix, x, y);
 }
 
 bool CorotationalHexFem::preconditionSystem(const Eigen::VectorXd& r,
