@@ -828,6 +828,33 @@ double distanceToLoops(const std::vector<Loop>& loops, const Vector2& q)
   return best;
 }
 
+/// The distance from q to the nearest point of `loops` ahead of it, within
+/// 60 degrees of `ahead` (unit): what a move of q along `ahead` can reach.
+/// Each loop edge counts by its ends and its point nearest q.
+double distanceAheadToLoops(const std::vector<Loop>& loops, const Vector2& q, const Vector2& ahead)
+{
+  double best = Infinity;
+  const auto consider = [&](const Vector2& p)
+  {
+    const Vector2 offset = p - q;
+    const double distance = offset.norm();
+    if (offset.dot(ahead) >= 0.5 * distance)
+      best = std::min(best, distance);
+  };
+  for (const Loop& loop : loops)
+  {
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      const Vector2& a = loop[i];
+      const Vector2 d = loop[(i + 1) % loop.size()] - a;
+      const double t = std::clamp((q - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+      consider(a);
+      consider(a + t * d);
+    }
+  }
+  return best;
+}
+
 std::vector<Vector2> latticeInside(const std::vector<Loop>& loops,
   double h,
   double margin,
@@ -1033,11 +1060,13 @@ std::vector<Vector2> placeBorder(const ProjectedSurface& surface,
       const Vector2& previous = border[(i + border.size() - 1) % border.size()];
       const Vector2& next = border[(i + 1) % border.size()];
       const Vector2 along = (next - previous).normalized();
-      // Less than half the way to another loop of the outline (a hole
-      // about a thickness from the rim): moved in from both sides, the two
-      // borders would cross.
-      const double room = 0.45 * distanceToLoops(otherLoops, border[i]);
-      moved[i] = movedIn(surface, border[i], Vector2(-along.y(), along.x()), extent, room);
+      // Less than half the way to another loop of the outline ahead (a
+      // hole about a thickness from the rim): moved in from both sides, the
+      // two borders would cross. A loop beside or behind (a tear's other
+      // lip) does not limit the move.
+      const Vector2 inward(-along.y(), along.x());
+      const double room = 0.45 * distanceAheadToLoops(otherLoops, border[i], inward);
+      moved[i] = movedIn(surface, border[i], inward, extent, room);
     }
     // Moving in gathers points on concave stretches: spread them evenly
     // again along the moved outline (its corners kept).
