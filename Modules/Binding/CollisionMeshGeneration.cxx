@@ -788,15 +788,21 @@ std::vector<Vector2> resampleEvenly(const std::vector<Vector2>& polygon, int cou
   return result;
 }
 
+/// The point of segment ab nearest q.
+Vector2 nearestOnSegment(const Vector2& a, const Vector2& b, const Vector2& q)
+{
+  const Vector2 d = b - a;
+  const double t = std::clamp((q - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+  return a + t * d;
+}
+
 double distanceToPolygon(const std::vector<Vector2>& polygon, const Vector2& q)
 {
   double best = Infinity;
   for (std::size_t i = 0; i < polygon.size(); ++i)
   {
-    const Vector2& a = polygon[i];
-    const Vector2 d = polygon[(i + 1) % polygon.size()] - a;
-    const double t = std::clamp((q - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-    best = std::min(best, (q - (a + t * d)).norm());
+    best = std::min(
+      best, (q - nearestOnSegment(polygon[i], polygon[(i + 1) % polygon.size()], q)).norm());
   }
   return best;
 }
@@ -845,11 +851,8 @@ double distanceAheadToLoops(const std::vector<Loop>& loops, const Vector2& q, co
   {
     for (std::size_t i = 0; i < loop.size(); ++i)
     {
-      const Vector2& a = loop[i];
-      const Vector2 d = loop[(i + 1) % loop.size()] - a;
-      const double t = std::clamp((q - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-      consider(a);
-      consider(a + t * d);
+      consider(loop[i]);
+      consider(nearestOnSegment(loop[i], loop[(i + 1) % loop.size()], q));
     }
   }
   return best;
