@@ -238,6 +238,14 @@ void readWrinkleParameters(const ScenarioReader& r, ScenarioDescription& s)
     r.fail("tissue.wrinkle.windowSize", "must be a whole number of monitor points, at least 2");
   }
   w.windowSize = static_cast<int>(window);
+  const double perStep =
+    r.number("tissue.wrinkle.refreshMonitorsPerStep", w.refreshMonitorsPerUpdate, false);
+  if (perStep != std::floor(perStep) || perStep < 0.0 || perStep > 1e6)
+  {
+    r.fail("tissue.wrinkle.refreshMonitorsPerStep",
+      "must be a whole number of monitor points, 0 (all at the cut) or more");
+  }
+  w.refreshMonitorsPerUpdate = static_cast<int>(perStep);
   try
   {
     checkWrinkleParameters(w);

@@ -62,8 +62,16 @@ struct ScenarioDescription
   bool wrinkles = true;
   LinearMaterial material;
   /// Wrinkle parameters (4.4; key tissue.wrinkle: frequency, scale,
-  /// magnitudeBound, windowSize).
-  WrinkleParameters wrinkle;
+  /// magnitudeBound, windowSize, refreshMonitorsPerStep). A scene
+  /// time-slices the refresh of the influence after a cut, 16 monitor
+  /// points a step (0: all in the step with the cut), so that a bite's
+  /// step does not pay it.
+  WrinkleParameters wrinkle = []
+  {
+    WrinkleParameters w;
+    w.refreshMonitorsPerUpdate = 16;
+    return w;
+  }();
   /// Cut surface (5.3.4; key cutting): rows of vertices between the two
   /// sides, and the free pieces below this fraction of the tissue's
   /// collision area removed whole.

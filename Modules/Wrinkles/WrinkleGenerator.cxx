@@ -30,6 +30,9 @@ void checkWrinkleParameters(const WrinkleParameters& p)
     p.windowSize >= 2, "window size e - s " + std::to_string(p.windowSize) + " must be at least 2");
   require(std::isfinite(p.reversalThreshold),
     "reversal threshold N_c " + std::to_string(p.reversalThreshold) + " must be finite");
+  require(p.refreshMonitorsPerUpdate >= 0,
+    "refresh monitors per update " + std::to_string(p.refreshMonitorsPerUpdate) +
+      " must not be negative");
   require(p.startContacts >= 0 && p.endContacts >= 0,
     "contact thresholds N_s " + std::to_string(p.startContacts) + " and N_e " +
       std::to_string(p.endContacts) + " must not be negative");
@@ -115,6 +118,14 @@ void WrinkleGenerator::update(const std::vector<Vector3>& nodePositions,
     selectWindow(contacts.instrumentContact);
   }
   updateReference(contacts);
+  if (Influence.refreshPending() && !RefreshDeferredThisStep)
+  {
+    // A time-sliced refresh after a cut (WrinkleParameters): the wrinkles
+    // of the steps until it ends move what the monitor points near the cut
+    // moved before it (the new rim follows a few steps late).
+    Influence.continueRefresh(static_cast<std::size_t>(Parameters.refreshMonitorsPerUpdate));
+  }
+  RefreshDeferredThisStep = false;
   for (const int j : Displaced)
   {
     SlotOfPoint[j] = -1;

@@ -73,6 +73,15 @@ struct WrinkleParameters
   /// the wrinkles.
   int endContacts = 1;
   WrinkleAnchor anchor = WrinkleAnchor::Current;
+  /// After a cut, the monitor points near it are searched again on the new
+  /// surface (WrinkleInfluence::refresh). 0: inside followCut, all at once;
+  /// n > 0: n of them per update() from the one after the cut's own step
+  /// on (a time-sliced refresh: the step with the cut does not pay the
+  /// searches, nor the grid they walk). Until the last one, the monitor
+  /// points near the cut move the surface points they moved before it
+  /// (the new rim's vertices follow a few updates late); then the
+  /// influence is the one the whole refresh makes, bit for bit.
+  int refreshMonitorsPerUpdate = 0;
 };
 
 /// Throws InvalidInputError naming the parameter on a value out of range.
@@ -123,7 +132,8 @@ public:
   const WrinkleParameters& parameters() const { return Parameters; }
 
   /// One step (items 1-4 of the file comment) from the hexahedra's current
-  /// node positions. No allocation after the first step.
+  /// node positions. No allocation after the first step, but in the steps
+  /// of a time-sliced refresh after a cut.
   void update(const std::vector<Vector3>& nodePositions, const WrinkleContactState& contacts);
 
   /// Adds the wrinkle displacement to the displaced points of `positions`
@@ -177,6 +187,9 @@ private:
   std::vector<Vector3> Reference;
   bool HasPrevious = false;
   bool NeedWrinkles = false;
+  /// followCut deferred the refresh in this step: the searches start with
+  /// the next update (not in the step that already paid for the cut).
+  bool RefreshDeferredThisStep = false;
   int WindowBegin = 0;
   int WindowEnd = 0;
   int LastReversals = 0;

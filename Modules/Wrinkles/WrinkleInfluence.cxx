@@ -5,7 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <memory>
+#include <optional>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -479,24 +483,24 @@ bool reachMeets(const MonitorReach& r, const BoundingBox& box)
 namespace
 {
 
-/// find() for each monitor listed, in parallel (a search, with its
-/// scratch, per thread; each monitor's entries depend on it alone).
-std::vector<std::vector<RawEntry>> findAffected(const std::vector<MonitorReach>& reaches,
-  const std::vector<int>& monitors,
+/// find() for each of `count` monitors listed from `monitors`, in parallel
+/// (a search, with its scratch, per thread; each monitor's entries depend
+/// on it alone).
+std::vector<std::vector<RawEntry>> searchAffected(const std::vector<MonitorReach>& reaches,
+  const int* monitors,
+  std::size_t count,
   const std::vector<Vector3>& surfaceRest,
-  const std::vector<Triangle>& triangles,
+  const SurfaceNeighbours& neighbours,
+  const PointGrid& grid,
   double negligibleBlend)
 {
-  std::vector<std::vector<RawEntry>> found(monitors.size());
-  if (monitors.empty())
+  std::vector<std::vector<RawEntry>> found(count);
+  if (count == 0)
     return found;
-  const PointGrid grid = gridFor(reaches, surfaceRest);
-  // The neighbours once, shared; the searches' scratch per thread.
-  const SurfaceNeighbours neighbours(triangles.empty() ? 0 : surfaceRest.size(), triangles);
   tbb::enumerable_thread_specific<AffectedPointSearch> searches(
     [&] { return AffectedPointSearch(surfaceRest, neighbours, grid, negligibleBlend); });
   // Grains of 8: a search costs some microseconds.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, monitors.size(), 8),
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 8),
     [&](const tbb::blocked_range<std::size_t>& range)
     {
       AffectedPointSearch& search = searches.local();
@@ -506,7 +510,162 @@ std::vector<std::vector<RawEntry>> findAffected(const std::vector<MonitorReach>&
   return found;
 }
 
+/// The same over a grid and neighbours made for this search only.
+std::vector<std::vector<RawEntry>> findAffected(const std::vector<MonitorReach>& reaches,
+  const std::vector<int>& monitors,
+  const std::vector<Vector3>& surfaceRest,
+  const std::vector<Triangle>& triangles,
+  double negligibleBlend)
+{
+  if (monitors.empty())
+    return {};
+  const PointGrid grid = gridFor(reaches, surfaceRest);
+  // The neighbours once, shared by the threads' searches.
+  const SurfaceNeighbours neighbours(triangles.empty() ? 0 : surfaceRest.size(), triangles);
+  return searchAffected(
+    reaches, monitors.data(), monitors.size(), surfaceRest, neighbours, grid, negligibleBlend);
+}
+
+/// Monitor points to search again: new ones, those whose reach meets
+/// `changed`, and those a pending refresh had (`wasPending`, by old index).
+std::vector<int> staleMonitors(const std::vector<MonitorReach>& reaches,
+  const std::vector<int>& previous,
+  const BoundingBox& changed,
+  const std::vector<char>& wasPending)
+{
+  std::vector<int> stale;
+  for (std::size_t i = 0; i < reaches.size(); ++i)
+  {
+    const int old = previous[i];
+    if (old < 0 || (old < static_cast<int>(wasPending.size()) && wasPending[old]) ||
+        reachMeets(reaches[i], changed))
+      stale.push_back(static_cast<int>(i));
+  }
+  return stale;
+}
+
+/// Entries being gathered: points, blends and attenuations side by side.
+struct EntryArrays
+{
+  std::vector<int> points;
+  std::vector<double> blends;
+  std::vector<double> attenuations;
+
+  /// Appends entries [begin, end) of the given arrays.
+  void append(const std::vector<int>& p,
+    const std::vector<double>& b,
+    const std::vector<double>& a,
+    int begin,
+    int end)
+  {
+    points.insert(points.end(), p.begin() + begin, p.begin() + end);
+    blends.insert(blends.end(), b.begin() + begin, b.begin() + end);
+    attenuations.insert(attenuations.end(), a.begin() + begin, a.begin() + end);
+  }
+};
+
+/// The raw arrays (grouped per monitor point by `offsets`) with the entries
+/// of the `searched` monitor points replaced by those `found`; `counts`
+/// receives each one's entry count.
+void mergeEntries(const std::vector<int>& searched,
+  const std::vector<std::vector<RawEntry>>& found,
+  const std::vector<int>& offsets,
+  std::vector<int>& points,
+  std::vector<double>& blends,
+  std::vector<double>& attenuations,
+  std::vector<int>& counts)
+{
+  EntryArrays merged;
+  counts.assign(offsets.size() - 1, 0);
+  std::size_t next = 0; // in `searched` and `found`
+  for (std::size_t i = 0; i < counts.size(); ++i)
+  {
+    if (next < searched.size() && searched[next] == static_cast<int>(i))
+    {
+      const std::vector<RawEntry>& raw = found[next++];
+      counts[i] = static_cast<int>(raw.size());
+      for (const RawEntry& e : raw)
+      {
+        merged.points.push_back(e.point);
+        merged.blends.push_back(e.blend);
+        merged.attenuations.push_back(e.attenuation);
+      }
+      continue;
+    }
+    // Far from the cut: the same points, blends and attenuations.
+    counts[i] = offsets[i + 1] - offsets[i];
+    merged.append(points, blends, attenuations, offsets[i], offsets[i + 1]);
+  }
+  points = std::move(merged.points);
+  blends = std::move(merged.blends);
+  attenuations = std::move(merged.attenuations);
+}
+
 } // namespace
+
+/// What a deferred refresh searches in (a copy of the surface it was given,
+/// its neighbours and grid) and what it has found so far, in the order of
+/// `monitors`.
+struct WrinkleInfluence::PendingRefresh
+{
+  PendingRefresh(std::vector<MonitorReach> monitorReaches,
+    std::vector<int> stale,
+    const std::vector<Vector3>& surfaceRest,
+    const std::vector<Triangle>& surfaceTriangles)
+    : reaches(std::move(monitorReaches))
+    , monitors(std::move(stale))
+    , surface(surfaceRest)
+    , triangles(surfaceTriangles)
+  {
+  }
+
+  /// The neighbours and the grid, made by the first search (not in the
+  /// step with the cut).
+  void prepare()
+  {
+    if (!neighbours)
+    {
+      neighbours.emplace(triangles.empty() ? 0 : surface.size(), triangles);
+      grid.emplace(gridFor(reaches, surface));
+    }
+  }
+
+  std::vector<MonitorReach> reaches;
+  /// Monitor points to search (ascending); the first found.size() are done.
+  std::vector<int> monitors;
+  std::vector<Vector3> surface;
+  std::vector<Triangle> triangles;
+  std::optional<SurfaceNeighbours> neighbours;
+  std::optional<PointGrid> grid;
+  std::vector<std::vector<RawEntry>> found;
+};
+
+WrinkleInfluence::WrinkleInfluence() = default;
+WrinkleInfluence::~WrinkleInfluence() = default;
+WrinkleInfluence::WrinkleInfluence(WrinkleInfluence&& other) noexcept = default;
+WrinkleInfluence& WrinkleInfluence::operator=(WrinkleInfluence&& other) noexcept = default;
+
+WrinkleInfluence::WrinkleInfluence(const WrinkleInfluence& other)
+  : Settings(other.Settings)
+  , Offsets(other.Offsets)
+  , Points(other.Points)
+  , Factors(other.Factors)
+  , Blends(other.Blends)
+  , Attenuations(other.Attenuations)
+  , Affected(other.Affected)
+  , Pending(other.Pending ? std::make_unique<PendingRefresh>(*other.Pending) : nullptr)
+{
+}
+
+WrinkleInfluence& WrinkleInfluence::operator=(const WrinkleInfluence& other)
+{
+  if (this != &other)
+  {
+    WrinkleInfluence copy(other);
+    *this = std::move(copy);
+  }
+  return *this;
+}
 
 WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
   const std::vector<Vector3>& surfaceRest,
@@ -518,52 +677,116 @@ WrinkleInfluence::WrinkleInfluence(const MonitorPointSet& monitors,
   refresh(monitors, std::vector<int>(monitors.size(), -1), surfaceRest, triangles, BoundingBox());
 }
 
+std::vector<char> WrinkleInfluence::pendingFlags() const
+{
+  std::vector<char> flags(Pending ? monitorCount() : 0, 0);
+  if (Pending)
+    for (const int i : Pending->monitors)
+      flags[i] = 1;
+  return flags;
+}
+
+void WrinkleInfluence::keepPreviousEntries(const std::vector<int>& previous)
+{
+  EntryArrays kept;
+  std::vector<int> offsets(previous.size() + 1, 0);
+  for (std::size_t i = 0; i < previous.size(); ++i)
+  {
+    const int old = previous[i];
+    offsets[i + 1] = offsets[i];
+    if (old < 0)
+      continue; // new: searched
+    if (old + 1 >= static_cast<int>(Offsets.size()))
+      throw InvalidInputError("wrinkle influence refresh: monitor point " + std::to_string(i) +
+                              " was monitor point " + std::to_string(old) + " of " +
+                              std::to_string(monitorCount()) + " before");
+    offsets[i + 1] += Offsets[old + 1] - Offsets[old];
+    kept.append(Points, Blends, Attenuations, Offsets[old], Offsets[old + 1]);
+  }
+  Offsets = std::move(offsets);
+  Points = std::move(kept.points);
+  Blends = std::move(kept.blends);
+  Attenuations = std::move(kept.attenuations);
+}
+
 void WrinkleInfluence::refresh(const MonitorPointSet& monitors,
   const std::vector<int>& previous,
   const std::vector<Vector3>& surfaceRest,
   const std::vector<Triangle>& triangles,
   const BoundingBox& changed)
 {
+  checkPrevious(monitors, previous);
   const std::vector<MonitorReach> reaches = reachesOf(monitors, Settings);
-  std::vector<int> searched;
-  for (std::size_t i = 0; i < reaches.size(); ++i)
-  {
-    if (previous[i] < 0 || reachMeets(reaches[i], changed))
-      searched.push_back(static_cast<int>(i));
-  }
+  const std::vector<int> searched = staleMonitors(reaches, previous, changed, pendingFlags());
+  Pending.reset(); // superseded: what it had left is searched here
+  keepPreviousEntries(previous);
   const std::vector<std::vector<RawEntry>> found =
     findAffected(reaches, searched, surfaceRest, triangles, Settings.negligibleBlend);
-  std::vector<int> points;
-  std::vector<double> blends, attenuations;
-  std::vector<int> counts(monitors.size(), 0);
-  std::size_t next = 0; // in `searched` and `found`
-  for (std::size_t i = 0; i < reaches.size(); ++i)
-  {
-    if (next < searched.size() && searched[next] == static_cast<int>(i))
-    {
-      const std::vector<RawEntry>& raw = found[next++];
-      counts[i] = static_cast<int>(raw.size());
-      for (const RawEntry& e : raw)
-      {
-        points.push_back(e.point);
-        blends.push_back(e.blend);
-        attenuations.push_back(e.attenuation);
-      }
-      continue;
-    }
-    // Far from the cut: the same points, blends and attenuations.
-    const int old = previous[i];
-    counts[i] = Offsets[old + 1] - Offsets[old];
-    points.insert(points.end(), Points.begin() + Offsets[old], Points.begin() + Offsets[old + 1]);
-    blends.insert(blends.end(), Blends.begin() + Offsets[old], Blends.begin() + Offsets[old + 1]);
-    attenuations.insert(attenuations.end(),
-      Attenuations.begin() + Offsets[old],
-      Attenuations.begin() + Offsets[old + 1]);
-  }
-  Points = std::move(points);
-  Blends = std::move(blends);
-  Attenuations = std::move(attenuations);
+  std::vector<int> counts;
+  mergeEntries(searched, found, Offsets, Points, Blends, Attenuations, counts);
   normalise(counts, surfaceRest.size());
+}
+
+void WrinkleInfluence::deferRefresh(const MonitorPointSet& monitors,
+  const std::vector<int>& previous,
+  const std::vector<Vector3>& surfaceRest,
+  const std::vector<Triangle>& triangles,
+  const BoundingBox& changed)
+{
+  checkPrevious(monitors, previous);
+  std::vector<MonitorReach> reaches = reachesOf(monitors, Settings);
+  std::vector<int> stale = staleMonitors(reaches, previous, changed, pendingFlags());
+  Pending.reset();
+  // Until the searches are done, every monitor point keeps its entries.
+  keepPreviousEntries(previous);
+  std::vector<int> counts(previous.size());
+  for (std::size_t i = 0; i < counts.size(); ++i)
+    counts[i] = Offsets[i + 1] - Offsets[i];
+  normalise(counts, surfaceRest.size());
+  if (!stale.empty())
+    Pending = std::make_unique<PendingRefresh>(
+      std::move(reaches), std::move(stale), surfaceRest, triangles);
+}
+
+void WrinkleInfluence::checkPrevious(const MonitorPointSet& monitors,
+  const std::vector<int>& previous) const
+{
+  if (previous.size() != monitors.size())
+    throw InvalidInputError("wrinkle influence refresh: " + std::to_string(previous.size()) +
+                            " previous indices for " + std::to_string(monitors.size()) +
+                            " monitor points");
+}
+
+std::size_t WrinkleInfluence::pendingMonitorCount() const
+{
+  return Pending ? Pending->monitors.size() - Pending->found.size() : 0;
+}
+
+void WrinkleInfluence::continueRefresh(std::size_t monitorBudget)
+{
+  if (!Pending)
+    return;
+  PendingRefresh& p = *Pending;
+  p.prepare();
+  const std::size_t done = p.found.size();
+  const std::size_t left = p.monitors.size() - done;
+  const std::size_t count = monitorBudget == 0 ? left : std::min(left, monitorBudget);
+  std::vector<std::vector<RawEntry>> found = searchAffected(p.reaches,
+    p.monitors.data() + done,
+    count,
+    p.surface,
+    *p.neighbours,
+    *p.grid,
+    Settings.negligibleBlend);
+  std::move(found.begin(), found.end(), std::back_inserter(p.found));
+  if (p.found.size() < p.monitors.size())
+    return;
+  // The searched monitor points' new entries, the others' kept ones.
+  std::vector<int> counts;
+  mergeEntries(p.monitors, p.found, Offsets, Points, Blends, Attenuations, counts);
+  const std::size_t surfaceCount = p.surface.size();
+  Pending.reset();
+  normalise(counts, surfaceCount);
 }
 
 void WrinkleInfluence::normalise(const std::vector<int>& counts, std::size_t surfaceCount)

@@ -25,6 +25,7 @@
 #include "MonitorCurves.h"
 #include "ThinTissueWrinklesModule.h"
 
+#include <memory>
 #include <vector>
 
 namespace thintissue
@@ -50,7 +51,12 @@ struct WrinkleInfluenceSettings
 class THINTISSUEWRINKLES_EXPORT WrinkleInfluence
 {
 public:
-  WrinkleInfluence() = default;
+  WrinkleInfluence();
+  ~WrinkleInfluence();
+  WrinkleInfluence(const WrinkleInfluence& other);
+  WrinkleInfluence& operator=(const WrinkleInfluence& other);
+  WrinkleInfluence(WrinkleInfluence&& other) noexcept;
+  WrinkleInfluence& operator=(WrinkleInfluence&& other) noexcept;
   /// Finds the affected points of `surfaceRest` (the visual vertices at
   /// rest). With the surface's `triangles`, only the points connected
   /// through them to the monitor point's nearest one count (and only points
@@ -74,6 +80,24 @@ public:
     const std::vector<Vector3>& surfaceRest,
     const std::vector<Triangle>& triangles,
     const BoundingBox& changed);
+  /// The same refresh, deferred (a time-sliced update after a cut): nothing
+  /// is searched now; until continueRefresh has searched every monitor
+  /// point concerned, each keeps its entries from before the cut (a new
+  /// one has none). The surface and its triangles are kept as given here,
+  /// so that the finished refresh is the one refresh() makes, bit for bit.
+  /// A refresh while one is pending searches again what that one had left
+  /// and what it had searched.
+  void deferRefresh(const MonitorPointSet& monitors,
+    const std::vector<int>& previous,
+    const std::vector<Vector3>& surfaceRest,
+    const std::vector<Triangle>& triangles,
+    const BoundingBox& changed);
+  /// Searches up to `monitorBudget` more monitor points of a deferred
+  /// refresh (0: all that are left); the last one normalises the blends.
+  void continueRefresh(std::size_t monitorBudget);
+  bool refreshPending() const { return Pending != nullptr; }
+  /// Monitor points a deferred refresh has still to search.
+  std::size_t pendingMonitorCount() const;
   std::size_t monitorCount() const { return Offsets.size() - 1; }
   int affectedBegin(std::size_t monitor) const { return Offsets[monitor]; }
   int affectedEnd(std::size_t monitor) const { return Offsets[monitor + 1]; }
@@ -89,6 +113,13 @@ private:
   /// Offsets, Points, Factors and Affected from Points, Blends and
   /// Attenuations (grouped by monitor, `counts` entries each).
   void normalise(const std::vector<int>& counts, std::size_t surfaceCount);
+  /// Per monitor point: whether a pending refresh searches it.
+  std::vector<char> pendingFlags() const;
+  /// The raw arrays (Offsets, Points, Blends, Attenuations) regrouped as
+  /// the new monitor points: each keeps the entries of previous[i] (none
+  /// for a new one). Throws InvalidInputError on an index out of range.
+  void keepPreviousEntries(const std::vector<int>& previous);
+  void checkPrevious(const MonitorPointSet& monitors, const std::vector<int>& previous) const;
 
   WrinkleInfluenceSettings Settings;
   std::vector<int> Offsets{ 0 };
@@ -99,6 +130,11 @@ private:
   std::vector<double> Blends;
   std::vector<double> Attenuations;
   std::vector<int> Affected;
+  /// A deferred refresh: the surface, its neighbours and grid, the monitor
+  /// points to search and what was found so far (WrinkleInfluence.cxx).
+  /// Last: the members before it never need its destructor.
+  struct PendingRefresh;
+  std::unique_ptr<PendingRefresh> Pending;
 };
 
 } // namespace thintissue

@@ -72,6 +72,7 @@ void WrinkleGenerator::followCut(const TissueCutter& cutter, const TissueCutRepo
   Displaced.reserve(Influence.affectedPoints().size());
   Displacements.reserve(Influence.affectedPoints().size());
   NeedWrinkles = false;
+  RefreshDeferredThisStep = Influence.refreshPending();
   Reference.clear();
   WindowBegin = WindowEnd = 0;
 }
@@ -126,7 +127,10 @@ void WrinkleGenerator::refreshInfluence(const TissueCutter& cutter,
       include(t);
     }
   }
-  Influence.refresh(Monitors, previous, visual.positions, shown, changed);
+  if (Parameters.refreshMonitorsPerUpdate > 0)
+    Influence.deferRefresh(Monitors, previous, visual.positions, shown, changed);
+  else
+    Influence.refresh(Monitors, previous, visual.positions, shown, changed);
   ShownTriangles = active;
   SlotOfPoint.assign(visual.vertexCount(), -1);
 }

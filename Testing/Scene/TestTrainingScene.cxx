@@ -308,6 +308,15 @@ TEST(TrainingScene, SettingsAreReadAndValidatedByKey)
     "good.json");
   EXPECT_EQ(s.wrinkle.frequency, 9.0);
   EXPECT_EQ(s.wrinkle.windowSize, 40);
+  EXPECT_EQ(s.wrinkle.refreshMonitorsPerUpdate, 16); // the scenes' time-sliced default
+  EXPECT_EQ(parseScenario(R"({"version": 1, "tissue": {"wrinkle": {"refreshMonitorsPerStep": 0}}})",
+              "whole.json")
+              .wrinkle.refreshMonitorsPerUpdate,
+    0);
+  const std::string budget =
+    messageOf(R"({"version": 1, "tissue": {"wrinkle": {"refreshMonitorsPerStep": -2}}})");
+  EXPECT_NE(budget.find("key 'tissue.wrinkle.refreshMonitorsPerStep'"), std::string::npos)
+    << budget;
   EXPECT_EQ(s.cutSurfaceRows, 3);
   EXPECT_EQ(s.fragmentAreaFraction, 0.01);
   const std::string window =

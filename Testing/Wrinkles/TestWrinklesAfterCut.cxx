@@ -179,3 +179,106 @@ TEST(WrinklesAfterCut, APunchedOutPieceTakesItsMonitorPointsAndTheRestStillWrink
     }
   }
 }
+
+namespace
+{
+
+/// Same monitor points, entries and factors, bit for bit.
+::testing::AssertionResult sameInfluence(const WrinkleInfluence& a, const WrinkleInfluence& b)
+{
+  if (a.monitorCount() != b.monitorCount() || a.entryCount() != b.entryCount())
+    return ::testing::AssertionFailure()
+           << a.monitorCount() << " monitor points and " << a.entryCount() << " entries against "
+           << b.monitorCount() << " and " << b.entryCount();
+  for (std::size_t i = 0; i < a.monitorCount(); ++i)
+    if (a.affectedBegin(i) != b.affectedBegin(i) || a.affectedEnd(i) != b.affectedEnd(i))
+      return ::testing::AssertionFailure() << "monitor point " << i << "'s entries differ";
+  for (int e = 0; e < static_cast<int>(a.entryCount()); ++e)
+    if (a.point(e) != b.point(e) || a.factor(e) != b.factor(e))
+      return ::testing::AssertionFailure() << "entry " << e << " differs";
+  if (a.affectedPoints() != b.affectedPoints())
+    return ::testing::AssertionFailure() << "the affected points differ";
+  return ::testing::AssertionSuccess();
+}
+
+} // namespace
+
+// Issue 17's bite step: the influence refresh after a cut spread over the
+// following updates ends where the refresh inside followCut ends, also
+// across a second cut while one is pending; wrinkles made in the meantime
+// use a valid influence (the entries from before the cut), and the same
+// wrinkles once it has ended.
+TEST(WrinklesAfterCut, ATimeSlicedRefreshEndsAsTheWholeOneBitForBit)
+{
+  const CutMeniscus& m = boundMeniscus();
+  TissueCutterSettings settings;
+  settings.freePieces = FreePieceHandling::Drop;
+  TissueCutter cutter(m.binding, m.c.model.simulation, nullptr, settings);
+  WrinkleParameters sliced;
+  sliced.refreshMonitorsPerUpdate = 4;
+  WrinkleGenerator whole(m.c.monitors, cutter.simulation(), cutter.visual().mesh());
+  WrinkleGenerator spread(m.c.monitors, cutter.simulation(), cutter.visual().mesh(), sliced);
+  ASSERT_TRUE(sameInfluence(whole.influence(), spread.influence()));
+  const std::size_t count = m.c.monitors.size();
+  const auto biteAt = [&](std::size_t i)
+  { return punchAt(m.c.monitors.monitorPoints[i] - 0.5 * inwardAt(m.c.monitors, i), 2.0); };
+
+  TissueCutReport report = cutter.cut(biteAt(count / 4));
+  ASSERT_GE(report.removedPieces, 1);
+  whole.followCut(cutter, report);
+  spread.followCut(cutter, report);
+  ASSERT_TRUE(spread.influence().refreshPending());
+  const std::size_t pending = spread.influence().pendingMonitorCount();
+  EXPECT_GT(pending, 8u); // the monitor points around the bite
+  EXPECT_FALSE(whole.influence().refreshPending());
+  // Meanwhile: one entry range per monitor point, points of the surface.
+  const WrinkleInfluence& interim = spread.influence();
+  ASSERT_EQ(interim.monitorCount(), spread.monitors().size());
+  for (int e = 0; e < static_cast<int>(interim.entryCount()); ++e)
+  {
+    ASSERT_LT(static_cast<std::size_t>(interim.point(e)), cutter.visual().mesh().vertexCount());
+    ASSERT_TRUE(std::isfinite(interim.factor(e)) && interim.factor(e) >= 0.0);
+  }
+
+  // Pressed right after the cut: the same wrinkles once the refresh ended.
+  {
+    WrinkleGenerator a = whole, b = spread;
+    const Vector3 contact = a.monitors().monitorPoints[a.monitors().size() / 2];
+    pressAndRelease(a, cutter.simulation(), contact);
+    pressAndRelease(b, cutter.simulation(), contact);
+    ASSERT_FALSE(b.influence().refreshPending());
+    EXPECT_TRUE(sameInfluence(a.influence(), b.influence()));
+    std::vector<Vector3> movedA = cutter.visual().mesh().positions, movedB = movedA;
+    a.applyTo(movedA);
+    b.applyTo(movedB);
+    EXPECT_EQ(movedA, movedB);
+  }
+
+  // Left alone: none in the update of the cut's own step, then 4 an update.
+  const WrinkleContactState none;
+  spread.update(cutter.simulation().nodes, none);
+  EXPECT_EQ(spread.influence().pendingMonitorCount(), pending);
+  spread.update(cutter.simulation().nodes, none);
+  EXPECT_EQ(spread.influence().pendingMonitorCount(), pending - 4);
+  // A second bite while that one is pending.
+  report = cutter.cut(biteAt(3 * count / 4));
+  ASSERT_GE(report.removedPieces, 1);
+  whole.followCut(cutter, report);
+  spread.followCut(cutter, report);
+  int updates = 0;
+  while (spread.influence().refreshPending() && updates < 1000)
+  {
+    spread.update(cutter.simulation().nodes, none);
+    ++updates;
+  }
+  EXPECT_GT(updates, 1);
+  EXPECT_TRUE(sameInfluence(whole.influence(), spread.influence()));
+  EXPECT_TRUE(influenceIsAsIfFound(spread, cutter));
+}
+
+TEST(WrinklesAfterCut, ANegativeRefreshBudgetIsRefused)
+{
+  WrinkleParameters p;
+  p.refreshMonitorsPerUpdate = -1;
+  EXPECT_THROW(checkWrinkleParameters(p), InvalidInputError);
+}
