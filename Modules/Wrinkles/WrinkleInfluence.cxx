@@ -715,16 +715,7 @@ void WrinkleInfluence::refresh(const MonitorPointSet& monitors,
   const std::vector<Triangle>& triangles,
   const BoundingBox& changed)
 {
-  checkPrevious(monitors, previous);
-  const std::vector<MonitorReach> reaches = reachesOf(monitors, Settings);
-  const std::vector<int> searched = staleMonitors(reaches, previous, changed, pendingFlags());
-  Pending.reset(); // superseded: what it had left is searched here
-  keepPreviousEntries(previous);
-  const std::vector<std::vector<RawEntry>> found =
-    findAffected(reaches, searched, surfaceRest, triangles, Settings.negligibleBlend);
-  std::vector<int> counts;
-  mergeEntries(searched, found, Offsets, Points, Blends, Attenuations, counts);
-  normalise(counts, surfaceRest.size());
+  startRefresh(monitors, previous, surfaceRest, triangles, changed, false);
 }
 
 void WrinkleInfluence::deferRefresh(const MonitorPointSet& monitors,
@@ -733,19 +724,39 @@ void WrinkleInfluence::deferRefresh(const MonitorPointSet& monitors,
   const std::vector<Triangle>& triangles,
   const BoundingBox& changed)
 {
+  startRefresh(monitors, previous, surfaceRest, triangles, changed, true);
+}
+
+void WrinkleInfluence::startRefresh(const MonitorPointSet& monitors,
+  const std::vector<int>& previous,
+  const std::vector<Vector3>& surfaceRest,
+  const std::vector<Triangle>& triangles,
+  const BoundingBox& changed,
+  bool defer)
+{
   checkPrevious(monitors, previous);
   std::vector<MonitorReach> reaches = reachesOf(monitors, Settings);
   std::vector<int> stale = staleMonitors(reaches, previous, changed, pendingFlags());
-  Pending.reset();
-  // Until the searches are done, every monitor point keeps its entries.
+  Pending.reset(); // superseded: what it had left is stale here
   keepPreviousEntries(previous);
-  std::vector<int> counts(previous.size());
-  for (std::size_t i = 0; i < counts.size(); ++i)
-    counts[i] = Offsets[i + 1] - Offsets[i];
+  std::vector<int> counts;
+  if (defer)
+  {
+    // Until the searches are done, every monitor point keeps its entries.
+    counts.resize(previous.size());
+    for (std::size_t i = 0; i < counts.size(); ++i)
+      counts[i] = Offsets[i + 1] - Offsets[i];
+    if (!stale.empty())
+      Pending = std::make_unique<PendingRefresh>(
+        std::move(reaches), std::move(stale), surfaceRest, triangles);
+  }
+  else
+  {
+    const std::vector<std::vector<RawEntry>> found =
+      findAffected(reaches, stale, surfaceRest, triangles, Settings.negligibleBlend);
+    mergeEntries(stale, found, Offsets, Points, Blends, Attenuations, counts);
+  }
   normalise(counts, surfaceRest.size());
-  if (!stale.empty())
-    Pending = std::make_unique<PendingRefresh>(
-      std::move(reaches), std::move(stale), surfaceRest, triangles);
 }
 
 void WrinkleInfluence::checkPrevious(const MonitorPointSet& monitors,

@@ -120,6 +120,13 @@ private:
   /// for a new one). Throws InvalidInputError on an index out of range.
   void keepPreviousEntries(const std::vector<int>& previous);
   void checkPrevious(const MonitorPointSet& monitors, const std::vector<int>& previous) const;
+  /// refresh (searches now) or deferRefresh (`defer`: searches listed).
+  void startRefresh(const MonitorPointSet& monitors,
+    const std::vector<int>& previous,
+    const std::vector<Vector3>& surfaceRest,
+    const std::vector<Triangle>& triangles,
+    const BoundingBox& changed,
+    bool defer);
 
   WrinkleInfluenceSettings Settings;
   std::vector<int> Offsets{ 0 };
