@@ -174,6 +174,23 @@ void reportSteps(BenchmarkReporter& reporter,
   }
 }
 
+/// Which kernels OpenBLAS runs, and who chose them.
+std::string blasCoreText(const BlasLibrary& blas)
+{
+  switch (blas.coreChoice)
+  {
+    case OpenBlasKernelChoice::Replaced:
+      return ", kernels " + blas.core + " (chosen by ThinTissue for this CPU)";
+    case OpenBlasKernelChoice::UsersChoice:
+      return ", kernels " + blas.core + " (OPENBLAS_CORETYPE)";
+    case OpenBlasKernelChoice::OpenBlasChoice:
+      return ", kernels " + blas.core + " (OpenBLAS's choice)";
+    case OpenBlasKernelChoice::NotOpenBlas:
+      break;
+  }
+  return "";
+}
+
 CorotationalHexFemSettings solverSettings(LinearSolverKind kind)
 {
   CorotationalHexFemSettings settings;
@@ -456,8 +473,8 @@ THINTISSUE_BENCHMARK_SUITE(femSuite,
   }
   useOneBlasThread(); // what the solver does at its first factorization
   const BlasLibrary blas = loadedBlasLibrary();
-  reporter.report(
-    "BLAS under CHOLMOD: " + blas.name + " " + blas.configuration + " (" + blas.path + ")",
+  reporter.report("BLAS under CHOLMOD: " + blas.name + " " + blas.configuration + " (" + blas.path +
+                    ")" + blasCoreText(blas),
     "threads",
     blas.threads,
     "");

@@ -4,6 +4,9 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <array>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -52,12 +55,102 @@ BlasLibrary loadedBlasLibrary()
     library.name = "OpenBLAS";
     library.configuration = configuration();
     library.threads = threads != nullptr ? threads() : 1;
+    using CoreFunction = char* (*)();
+    if (auto core = reinterpret_cast<CoreFunction>(blasSymbol("openblas_get_corename")))
+    {
+      library.core = core();
+    }
+    library.coreChoice = selectOpenBlasKernels();
   }
   else
   {
     library.name = library.path.find("/blas/") != std::string::npos ? "reference BLAS" : "unknown";
   }
   return library;
+}
+
+CpuVectorFeatures cpuVectorFeatures() noexcept
+{
+  // GCC's checks include the operating system's support (XGETBV) of the
+  // AVX and AVX-512 register states. The explicit initialisation is needed
+  // when this runs before the initializers (pre-initialization array).
+  __builtin_cpu_init();
+  CpuVectorFeatures features;
+  features.avx2 = __builtin_cpu_supports("avx2");
+  features.fma = __builtin_cpu_supports("fma");
+  features.avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+                    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+                    __builtin_cpu_supports("avx512vl");
+  return features;
+}
+
+const char* openBlasCoreFor(const CpuVectorFeatures& features) noexcept
+{
+  if (features.avx512)
+  {
+    return "SkylakeX";
+  }
+  if (features.avx2 && features.fma)
+  {
+    return "Haswell";
+  }
+  return "";
+}
+
+namespace
+{
+/// Whether OpenBLAS's core `current` runs the kernels of `best` or better.
+bool runsAtLeast(std::string current, const std::string& best)
+{
+  std::transform(current.begin(),
+    current.end(),
+    current.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  // OpenBLAS's cores with AVX-512 kernels, and those with AVX2 and FMA.
+  static const std::array<const char*, 3> avx512Cores{ "skylakex", "cooperlake", "sapphirerapids" };
+  static const std::array<const char*, 5> avx2Cores{
+    "haswell", "zen", "skylakex", "cooperlake", "sapphirerapids"
+  };
+  auto among = [&current](const auto& cores)
+  { return std::find(cores.begin(), cores.end(), current) != cores.end(); };
+  return best == "SkylakeX" ? among(avx512Cores) : among(avx2Cores);
+}
+
+OpenBlasKernelChoice chooseOpenBlasKernels()
+{
+  using CoreFunction = char* (*)();
+  using InitFunction = void (*)();
+  auto core = reinterpret_cast<CoreFunction>(blasSymbol("openblas_get_corename"));
+  auto quit = reinterpret_cast<InitFunction>(blasSymbol("gotoblas_dynamic_quit"));
+  auto init = reinterpret_cast<InitFunction>(blasSymbol("gotoblas_dynamic_init"));
+  if (core == nullptr || quit == nullptr || init == nullptr)
+  {
+    return OpenBlasKernelChoice::NotOpenBlas;
+  }
+  if (std::getenv("OPENBLAS_CORETYPE") != nullptr)
+  {
+    return OpenBlasKernelChoice::UsersChoice;
+  }
+  const std::string best = openBlasCoreFor(cpuVectorFeatures());
+  if (best.empty() || runsAtLeast(core(), best))
+  {
+    return OpenBlasKernelChoice::OpenBlasChoice;
+  }
+  setenv("OPENBLAS_CORETYPE", best.c_str(), 1);
+  quit();
+  init();
+  unsetenv("OPENBLAS_CORETYPE");
+  return OpenBlasKernelChoice::Replaced;
+}
+
+/// At load time: single-threaded, before anything of ours calls BLAS.
+[[maybe_unused]] const OpenBlasKernelChoice LoadTimeKernelChoice = selectOpenBlasKernels();
+} // namespace
+
+OpenBlasKernelChoice selectOpenBlasKernels()
+{
+  static const OpenBlasKernelChoice choice = chooseOpenBlasKernels();
+  return choice;
 }
 
 void useOneBlasThread()

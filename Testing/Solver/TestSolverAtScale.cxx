@@ -10,7 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -552,4 +555,53 @@ TEST(SolverAtScale, TheLoadedBlasIsNamed)
   {
     EXPECT_NE(blas.configuration.find("OpenBLAS"), std::string::npos) << blas.configuration;
   }
+}
+
+TEST(SolverAtScale, OpenBlasKernelsFollowTheCpusVectorUnits)
+{
+  CpuVectorFeatures features;
+  EXPECT_STREQ(openBlasCoreFor(features), "");
+  features.avx2 = true;
+  EXPECT_STREQ(openBlasCoreFor(features), "") << "AVX2 without FMA";
+  features.fma = true;
+  EXPECT_STREQ(openBlasCoreFor(features), "Haswell");
+  features.avx512 = true;
+  EXPECT_STREQ(openBlasCoreFor(features), "SkylakeX");
+}
+
+// The solver library selected OpenBLAS's kernels when it was loaded:
+// OpenBLAS runs those this CPU can run best. On this machine's Xeon
+// OpenBLAS 0.3.21 alone ran its SSE3 kernels ("Prescott").
+TEST(SolverAtScale, OpenBlasRunsTheKernelsThisCpuCanRun)
+{
+  const BlasLibrary blas = loadedBlasLibrary();
+  const std::string expected = openBlasCoreFor(cpuVectorFeatures());
+  if (blas.name != "OpenBLAS" || expected.empty())
+  {
+    GTEST_SKIP() << "not OpenBLAS (" << blas.name << "), or a CPU without AVX2";
+  }
+  auto lower = [](std::string text)
+  {
+    std::transform(text.begin(),
+      text.end(),
+      text.begin(),
+      [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+  };
+  ASSERT_NE(blas.coreChoice, OpenBlasKernelChoice::UsersChoice)
+    << "OPENBLAS_CORETYPE is set: the user's choice is kept";
+  ASSERT_NE(blas.coreChoice, OpenBlasKernelChoice::NotOpenBlas) << blas.configuration;
+  if (blas.coreChoice == OpenBlasKernelChoice::Replaced)
+  {
+    EXPECT_EQ(lower(blas.core), lower(expected));
+  }
+  else
+  {
+    // OpenBLAS's own choice was kept: it must be at least as capable.
+    const std::string core = lower(blas.core);
+    EXPECT_TRUE(core == "skylakex" || core == "cooperlake" || core == "sapphirerapids" ||
+                (expected == "Haswell" && (core == "haswell" || core == "zen")))
+      << blas.core << " on a CPU for " << expected;
+  }
+  EXPECT_EQ(std::getenv("OPENBLAS_CORETYPE"), nullptr) << "the environment is left as it was";
 }
