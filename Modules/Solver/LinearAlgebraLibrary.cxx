@@ -31,6 +31,14 @@ void* blasSymbol(const char* name)
   }
   return symbol;
 }
+/// The kernel set OpenBLAS runs ("Prescott", "SkylakeX"...), or empty when
+/// the BLAS is not OpenBLAS.
+std::string openBlasCoreName()
+{
+  using CoreFunction = char* (*)();
+  auto core = reinterpret_cast<CoreFunction>(blasSymbol("openblas_get_corename"));
+  return core != nullptr ? std::string(core()) : std::string();
+}
 } // namespace
 
 BlasLibrary loadedBlasLibrary()
@@ -55,11 +63,7 @@ BlasLibrary loadedBlasLibrary()
     library.name = "OpenBLAS";
     library.configuration = configuration();
     library.threads = threads != nullptr ? threads() : 1;
-    using CoreFunction = char* (*)();
-    if (auto core = reinterpret_cast<CoreFunction>(blasSymbol("openblas_get_corename")))
-    {
-      library.core = core();
-    }
+    library.core = openBlasCoreName();
     library.coreChoice = selectOpenBlasKernels();
   }
   else
@@ -73,7 +77,8 @@ CpuVectorFeatures cpuVectorFeatures() noexcept
 {
   // GCC's checks include the operating system's support (XGETBV) of the
   // AVX and AVX-512 register states. The explicit initialisation is needed
-  // when this runs before the initializers (pre-initialization array).
+  // because this also runs from a static initializer, which may come before
+  // libgcc's own.
   __builtin_cpu_init();
   CpuVectorFeatures features;
   features.avx2 = __builtin_cpu_supports("avx2");
@@ -118,12 +123,11 @@ bool runsAtLeast(std::string current, const std::string& best)
 
 OpenBlasKernelChoice chooseOpenBlasKernels()
 {
-  using CoreFunction = char* (*)();
   using InitFunction = void (*)();
-  auto core = reinterpret_cast<CoreFunction>(blasSymbol("openblas_get_corename"));
+  const std::string core = openBlasCoreName();
   auto quit = reinterpret_cast<InitFunction>(blasSymbol("gotoblas_dynamic_quit"));
   auto init = reinterpret_cast<InitFunction>(blasSymbol("gotoblas_dynamic_init"));
-  if (core == nullptr || quit == nullptr || init == nullptr)
+  if (core.empty() || quit == nullptr || init == nullptr)
   {
     return OpenBlasKernelChoice::NotOpenBlas;
   }
@@ -132,7 +136,7 @@ OpenBlasKernelChoice chooseOpenBlasKernels()
     return OpenBlasKernelChoice::UsersChoice;
   }
   const std::string best = openBlasCoreFor(cpuVectorFeatures());
-  if (best.empty() || runsAtLeast(core(), best))
+  if (best.empty() || runsAtLeast(core, best))
   {
     return OpenBlasKernelChoice::OpenBlasChoice;
   }
