@@ -1,6 +1,8 @@
 #include "GeodesicPaths.h"
 
+#include "SleeveGeodesic.h"
 #include "ThinTissueError.h"
+#include "TriangleMask.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -148,47 +150,6 @@ private:
   std::size_t Mask = 0;
   int Shift = 64;
   std::size_t Count = 0;
-};
-
-/// The triangles a search may use: all, or those marked in a mask (a path
-/// restricted to one side of a thin surface, see shortestPathWithin).
-struct TriangleMask
-{
-  const std::vector<char>* allowed = nullptr;
-  /// Sorted triangles allowed as well (null: none).
-  const std::vector<int>* alsoAllowed = nullptr;
-
-  bool operator()(int t) const
-  {
-    return allowed == nullptr || (*allowed)[t] != 0 ||
-           (alsoAllowed != nullptr &&
-             std::binary_search(alsoAllowed->begin(), alsoAllowed->end(), t));
-  }
-  /// Triangles of vertex v that may be used.
-  int vertexTriangleCount(const TriangleMeshAdjacency& adjacency, int v) const
-  {
-    if (allowed == nullptr)
-    {
-      return adjacency.vertexTriangleCount(v);
-    }
-    int count = 0;
-    for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
-         ++t)
-    {
-      count += (*this)(*t) ? 1 : 0;
-    }
-    return count;
-  }
-  /// Triangles of edge e that may be used.
-  int edgeTriangleCount(const TriangleMeshAdjacency& adjacency, int e) const
-  {
-    int count = 0;
-    for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
-    {
-      count += (*this)(*t) ? 1 : 0;
-    }
-    return count;
-  }
 };
 
 using QueueEntry = std::pair<double, int>;
@@ -1132,6 +1093,21 @@ SurfacePath GeodesicPathFinder::shortestPathOn(int source,
         *statistics = stats;
       }
       return std::move(*straight);
+    }
+  }
+  if (Algorithm == GeodesicAlgorithm::Sleeve)
+  {
+    SleeveStatistics sleeveStatistics;
+    if (auto found = sleeveGeodesic(Mesh, Adjacency, mask, source, target, &sleeveStatistics))
+    {
+      stats.sleeve = true;
+      stats.sleeveTriangles = sleeveStatistics.sleeveTriangles;
+      stats.sleeveReroutes = sleeveStatistics.reroutes;
+      if (statistics)
+      {
+        *statistics = stats;
+      }
+      return std::move(*found);
     }
   }
   // The bound of the patch: the search distance with steps across edges

@@ -2,7 +2,17 @@
 // Xin and Wang (the thesis's reference [165]) as CGAL's
 // Surface_mesh_shortest_path implements it, run on a local patch of the
 // mesh around the two end vertices so that the cost does not grow with the
-// whole mesh.
+// whole mesh (GeodesicAlgorithm::CgalPatch, the default).
+//
+// GeodesicAlgorithm::Sleeve (SleeveGeodesic.h) is 10 to 20 times faster:
+// the funnel through a sleeve of triangles along the path, rerouted round
+// vertices until the path is locally shortest. A locally shortest path is
+// not always the shortest: on the sheets' faces, the meniscus and round
+// slits it gives CGAL's paths, but where several geodesics join two
+// vertices (over a thin rim, round the bumps of a rough segmentation) it
+// can keep a longer one (measured in Documentation/Architecture.md), which
+// the binding does not accept. It is kept for what needs a fast geodesic
+// or a tight upper bound of the distance.
 //
 // Patch: the triangles having a vertex v with d(s, v) + d(v, t) <= lambda
 // * d(s, t) (the stars of those vertices), d being Dijkstra distances from
@@ -60,6 +70,25 @@ struct GeodesicPathStatistics
   /// The straight segment between the ends lies on the surface and is the
   /// path (no patch, no CGAL).
   bool straight = false;
+  /// The path came through a sleeve of triangles (SleeveGeodesic.h): the
+  /// sleeve's triangles and the bends moved round a vertex.
+  bool sleeve = false;
+  std::size_t sleeveTriangles = 0;
+  int sleeveReroutes = 0;
+};
+
+/// How GeodesicPathFinder finds a path that is not a straight segment.
+enum class GeodesicAlgorithm
+{
+  /// The funnel through a sleeve of triangles (from the shortest edge path
+  /// and from A* over triangle centroids), rerouted round vertices until it
+  /// is locally shortest, saddle vertices tried on both sides; the shorter
+  /// of the two (SleeveGeodesic.h). CGAL's patch where a sleeve
+  /// degenerates. Linear in the path's triangles; a locally shortest path.
+  Sleeve,
+  /// CGAL's Xin-Wang algorithm on a growing patch (the shortest path on the
+  /// whole surface); about quadratic in the patch.
+  CgalPatch
 };
 
 class THINTISSUEBINDING_EXPORT GeodesicPathFinder
@@ -123,6 +152,10 @@ public:
   /// (tests compare the two).
   void setStraightSegmentShortcut(bool on) { StraightSegmentShortcut = on; }
 
+  /// The algorithm of the paths that are not straight (default CgalPatch).
+  void setAlgorithm(GeodesicAlgorithm algorithm) { Algorithm = algorithm; }
+  GeodesicAlgorithm algorithm() const { return Algorithm; }
+
 private:
   void checkVertices(int source, int target) const;
   SurfacePath shortestPathOn(int source,
@@ -135,6 +168,7 @@ private:
   const TriangleMeshAdjacency& Adjacency;
   double InitialPatchScale = 1.1;
   bool StraightSegmentShortcut = true;
+  GeodesicAlgorithm Algorithm = GeodesicAlgorithm::CgalPatch;
   /// Per triangle: reversed in the patches so that each piece is
   /// consistently oriented.
   std::vector<char> Flipped;

@@ -316,6 +316,7 @@ TEST(GeodesicPaths, PatchIsNarrowAgainstTheGridDiagonals)
   const TriangleMeshAdjacency adjacency(grid);
   GeodesicPathFinder finder(grid, adjacency);
   finder.setStraightSegmentShortcut(false); // the patches are under test
+  finder.setAlgorithm(GeodesicAlgorithm::CgalPatch);
   const double diagonal = 15.0 * std::sqrt(2.0);
   GeodesicPathStatistics along, against;
   const SurfacePath alongPath = finder.shortestPath(at(10, 10), at(40, 40), &along);
@@ -361,6 +362,14 @@ TEST(GeodesicPaths, TopToBottomOfTheClosedSheetGoesOverTheRim)
   EXPECT_TRUE(overTheRim);
   EXPECT_GT(statistics.patchTriangles, 0u);
   EXPECT_LT(statistics.patchTriangles, visual.triangleCount() / 4);
+  // A sleeve along the path finds the same one.
+  GeodesicPathFinder sleeveFinder(visual, adjacency);
+  sleeveFinder.setAlgorithm(GeodesicAlgorithm::Sleeve);
+  GeodesicPathStatistics sleeveStatistics;
+  EXPECT_TRUE(isSamePath(sleeveFinder.shortestPath(top, bottom, &sleeveStatistics), path, 1e-9));
+  EXPECT_TRUE(sleeveStatistics.sleeve);
+  EXPECT_GT(sleeveStatistics.sleeveTriangles, 0u);
+  EXPECT_LT(sleeveStatistics.sleeveTriangles, visual.triangleCount() / 20);
 }
 
 //------------------------------------------------------------------------------
@@ -424,14 +433,17 @@ TEST(GeodesicPaths, LocalPatchEqualsTheWholeSurface)
     const GeodesicPathFinder local(mesh, adjacency);
     GeodesicPathFinder localPatch(mesh, adjacency);
     localPatch.setStraightSegmentShortcut(false);
+    localPatch.setAlgorithm(GeodesicAlgorithm::CgalPatch);
     // lambda = 1: the band along the shortest search path, which must often
     // grow (the meniscus's search paths zigzag).
     GeodesicPathFinder tight(mesh, adjacency);
     tight.setInitialPatchScale(1.0);
     tight.setStraightSegmentShortcut(false);
+    tight.setAlgorithm(GeodesicAlgorithm::CgalPatch);
     GeodesicPathFinder whole(mesh, adjacency);
     whole.setInitialPatchScale(1e9);
     whole.setStraightSegmentShortcut(false);
+    whole.setAlgorithm(GeodesicAlgorithm::CgalPatch);
     int straightPaths = 0;
     int growths = 0;
     for (const auto& [s, t] : samplePairs(mesh, counts[m], spacings[m], 11 + m))
@@ -466,6 +478,66 @@ TEST(GeodesicPaths, LocalPatchEqualsTheWholeSurface)
 }
 
 //------------------------------------------------------------------------------
+TEST(GeodesicPaths, SleevePathsAgainstCgalOnTheWholeSurface)
+{
+  // The sleeve's locally shortest paths against CGAL's Xin-Wang algorithm on
+  // the whole surface. The meniscus and a slit plane (round the slit's tip,
+  // a border vertex) give the same paths. Between some pairs of the closed
+  // sheet (over one rim or another) and of a strongly curved, jittered grid
+  // (bumps 2 high every 15 to 20: convex, concave and saddle vertices)
+  // several geodesics run, and the sleeve may keep a longer one; it is
+  // never shorter than the shortest.
+  TriangleMesh bumps = gridPlane(30, 30, 1.0, 0.3, 7);
+  bumps.name = "bumps";
+  for (Vector3& x : bumps.positions)
+  {
+    x.z() = 2.0 * std::sin(0.4 * x.x()) * std::cos(0.3 * x.y());
+  }
+  const TissueModel sheet = makeThinSheet(thesisSheetVisualResolution(1));
+  const MeniscusModel meniscus = makeMeniscus();
+  const TriangleMesh slit = slitPlane(40, 30, 20, 20, 3);
+  const TriangleMesh* meshes[] = { &meniscus.visual, &slit, &sheet.visual, &bumps };
+  const double spacings[] = { 6.0, 10.0, 15.0, 8.0 };
+  int reroutes = 0;
+  int longer = 0;
+  for (int m = 0; m < 4; ++m)
+  {
+    const TriangleMesh& mesh = *meshes[m];
+    SCOPED_TRACE(mesh.name);
+    const TriangleMeshAdjacency adjacency(mesh);
+    GeodesicPathFinder sleeve(mesh, adjacency);
+    sleeve.setStraightSegmentShortcut(false);
+    sleeve.setAlgorithm(GeodesicAlgorithm::Sleeve);
+    GeodesicPathFinder whole(mesh, adjacency);
+    whole.setInitialPatchScale(1e9);
+    for (const auto& [s, t] : samplePairs(mesh, 12, spacings[m], 31 + m))
+    {
+      SCOPED_TRACE("pair " + std::to_string(s) + " " + std::to_string(t));
+      GeodesicPathStatistics statistics;
+      const SurfacePath path = sleeve.shortestPath(s, t, &statistics);
+      const SurfacePath shortest = whole.shortestPath(s, t);
+      EXPECT_TRUE(statistics.sleeve);
+      EXPECT_TRUE(isWellFormed(mesh, adjacency, path, s, t));
+      // Its first sleeve holds the shortest edge path.
+      EXPECT_LE(path.length, sleeve.edgePathLength(s, t) * (1.0 + 1e-12));
+      reroutes += statistics.sleeveReroutes;
+      if (m < 2)
+      {
+        // The same length: unfolding a long sleeve (a 40 mm path) costs a
+        // few 1e-9 of it, and where the path grazes a vertex the two may
+        // pass it on either side.
+        EXPECT_NEAR(path.length, shortest.length, 1e-8 * shortest.length);
+        continue;
+      }
+      EXPECT_GE(path.length, shortest.length * (1.0 - 1e-12));
+      longer += path.length > shortest.length * (1.0 + 1e-9) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(reroutes, 0);
+  EXPECT_LE(longer, 4); // of 48 (measured: 2, on the sheet)
+}
+
+//------------------------------------------------------------------------------
 TEST(GeodesicPaths, PatchGrowsAroundTheEndOfASlit)
 {
   // A 40 x 30 mm plane slit along x = 20 from y = 0 to the tip at y = 20:
@@ -479,6 +551,7 @@ TEST(GeodesicPaths, PatchGrowsAroundTheEndOfASlit)
 
   GeodesicPathFinder whole(plane, adjacency);
   whole.setInitialPatchScale(1e9);
+  whole.setAlgorithm(GeodesicAlgorithm::CgalPatch);
   const SurfacePath reference = whole.shortestPath(s, t);
   EXPECT_NEAR(reference.length, detour, 1e-9 * detour);
 
@@ -486,6 +559,7 @@ TEST(GeodesicPaths, PatchGrowsAroundTheEndOfASlit)
   // staircase); the straight legs leave it, so it must grow.
   GeodesicPathFinder tight(plane, adjacency);
   tight.setInitialPatchScale(1.0);
+  tight.setAlgorithm(GeodesicAlgorithm::CgalPatch);
   GeodesicPathStatistics statistics;
   const SurfacePath grown = tight.shortestPath(s, t, &statistics);
   EXPECT_GT(statistics.patchGrowths, 0);
