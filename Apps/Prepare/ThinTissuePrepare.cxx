@@ -7,7 +7,7 @@
 //                     [--hexahedra N] [--collision-output FILE.vtp]
 //                     [--hexahedra-output FILE.vtu] [--max-thickness-ratio R] [--repair]
 //                     [--units mm|cm|m|um | --scale S] [--minimum-piece-fraction F]
-//                     [--bundle-per-piece]
+//                     [--bundle-per-piece] [--thicken T]
 //
 // Units: the mesh is never rescaled (every tolerance is relative to it);
 // its units, given or detected from its size (LengthUnits.h), are printed
@@ -25,11 +25,17 @@
 // in the bundle's metadata under "repair". Without it, a mesh refused for a
 // defect that repair fixes gets an error that says so.
 //
+// With --thicken T (millimetres) every open piece, a tissue segmented as one
+// surface (a cartilage's articular sheet), becomes the closed slab of that
+// thickness it stands for (SheetThickening.h), after the repair; what was
+// done is printed and kept in the metadata under "thicken".
+//
 // Exit codes: 0 done, 1 failed (unreadable mesh, bad input, write error),
 // 2 bad command line.
 #include "LengthUnits.h"
 #include "MeshRepair.h"
 #include "MeshValidation.h"
+#include "SheetThickening.h"
 #include "ThinTissueAppSupport.h"
 #include "ThinTissueError.h"
 #include "TissueBundle.h"
@@ -70,6 +76,8 @@ struct Options
   std::optional<thintissue::LengthUnits> units;
   double minimumPieceFraction = 0.05;
   bool bundlePerPiece = false;
+  /// --thicken: the thickness (mm) given to open pieces; 0: none.
+  double thickness = 0.0;
 };
 
 void printUsage(std::ostream& out)
@@ -78,7 +86,7 @@ void printUsage(std::ostream& out)
          "                         [--collision-output FILE.vtp] [--hexahedra-output FILE.vtu]\n"
          "                         [--max-thickness-ratio R] [--repair]\n"
          "                         [--units mm|cm|m|um | --scale S] [--minimum-piece-fraction F]\n"
-         "                         [--bundle-per-piece]\n"
+         "                         [--bundle-per-piece] [--thicken T]\n"
          "\n"
          "Makes a ready tissue from a closed, thin visual surface: a collision mid-surface\n"
          "with per-vertex radii (half the local thickness), hexahedra for the simulation,\n"
@@ -105,6 +113,9 @@ void printUsage(std::ostream& out)
          "                               piece is a tissue of its own\n"
          "  --bundle-per-piece           several tissues: one bundle each, BUNDLE-1, BUNDLE-2...\n"
          "                               (default: all in BUNDLE)\n"
+         "  --thicken T                  give each open piece (a tissue segmented as one\n"
+         "                               surface, such as a cartilage sheet) a thickness of\n"
+         "                               T mm: the closed slab with that sheet as mid-surface\n"
          "  --help                       this text\n"
          "\n"
          "Prints the units, the dropped fragments and each tissue's quality: the distance\n"
@@ -184,6 +195,10 @@ bool parseValue(const std::string& option, const std::string& value, Options& op
     }
     options.units = thintissue::lengthUnitsOfScale(scale);
   }
+  else if (option == "--thicken")
+  {
+    return parsePositiveNumber(value, options.thickness) || refuse("a positive thickness in mm");
+  }
   else if (option == "--minimum-piece-fraction")
   {
     double& fraction = options.minimumPieceFraction;
@@ -208,7 +223,8 @@ int parseArguments(int argc, char* argv[], Options& options)
     "--max-thickness-ratio",
     "--units",
     "--scale",
-    "--minimum-piece-fraction" };
+    "--minimum-piece-fraction",
+    "--thicken" };
   std::vector<std::string> positional;
   bool unitsGiven = false;
   for (int i = 1; i < argc; ++i)
@@ -287,7 +303,9 @@ std::string repairAdvice(const thintissue::TriangleMesh& visual)
              ? std::string()
              : " (--repair fills only small holes; this mesh has " +
                  std::to_string(report.openBorders) + " open border" +
-                 (report.openBorders == 1 ? "" : "s") + " longer than a hole)";
+                 (report.openBorders == 1 ? "" : "s") +
+                 " longer than a hole; a tissue segmented as one surface gets a thickness "
+                 "with --thicken T)";
   }
   std::vector<std::string> actions;
   const auto add = [&actions](int count, const std::string& action)
@@ -433,7 +451,22 @@ std::string writeTissues(const Options& options, const thintissue::PreparedTissu
   return {};
 }
 
-/// Repair (if asked), preparation of every piece, report and files.
+/// --thicken: the open pieces given the thickness (mm, in the mesh's units,
+/// given or detected as the preparation will).
+thintissue::SheetThickeningReport thicken(const Options& options, thintissue::TriangleMesh& visual)
+{
+  const thintissue::LengthUnits units =
+    options.units ? *options.units
+                  : thintissue::detectLengthUnits(visual.boundingBox().sizes().maxCoeff()).units;
+  thintissue::SheetThickeningReport report;
+  visual =
+    thintissue::thickenOpenSheets(visual, options.thickness * 0.001 / units.metresPerUnit, &report);
+  std::cout << report.summary(units.name.empty() ? "units" : units.name) << std::flush;
+  return report;
+}
+
+/// Repair (if asked), thickening (if asked), preparation of every piece,
+/// report and files.
 int prepareAndWrite(const Options& options, thintissue::TriangleMesh& visual)
 {
   thintissue::MeshRepairReport repair;
@@ -441,6 +474,11 @@ int prepareAndWrite(const Options& options, thintissue::TriangleMesh& visual)
   {
     visual = thintissue::repairTriangleMesh(visual, {}, &repair);
     std::cout << repair.summary() << std::flush;
+  }
+  thintissue::SheetThickeningReport thickening;
+  if (options.thickness > 0.0)
+  {
+    thickening = thicken(options, visual);
   }
   TextProgressBar bar;
   thintissue::PreparedTissues prepared;
@@ -465,6 +503,10 @@ int prepareAndWrite(const Options& options, thintissue::TriangleMesh& visual)
     if (options.repair)
     {
       thintissue::addBundleMetadata(bundle, "repair", repair.toJson());
+    }
+    if (options.thickness > 0.0)
+    {
+      thintissue::addBundleMetadata(bundle, "thicken", thickening.toJson());
     }
   }
   printReport(prepared);
@@ -498,7 +540,8 @@ int main(int argc, char* argv[])
   catch (const thintissue::InvalidInputError& e)
   {
     const bool read = !visual.triangles.empty();
-    return fail(e.what() + (options.repair || !read ? std::string() : repairAdvice(visual)));
+    const bool advise = read && !options.repair && options.thickness == 0.0;
+    return fail(e.what() + (advise ? repairAdvice(visual) : std::string()));
   }
   catch (const std::exception& e)
   {

@@ -1,6 +1,7 @@
 """Automatic collision mid-surface from Python: the thesis's sheet (visual
 model 1) gets a 65-vertex mid-surface with radii that the binding filter
-accepts; not-thin and open surfaces are reported, not crashed on."""
+accepts; not-thin and open surfaces are reported, not crashed on; an open
+sheet given a thickness (vtkThickenOpenSheetsFilter) gets its mid-surface."""
 import unittest
 
 import vtk
@@ -58,6 +59,57 @@ class CollisionMidSurfaceTest(unittest.TestCase):
             generator.SetInputConnection(plane_triangles.GetOutputPort())
             generator.Update()
             self.assertIn("open", generator.GetLastErrorMessage())
+        finally:
+            vtk.vtkObject.SetGlobalWarningDisplay(quiet)
+
+    def test_open_sheet_thickened_gets_its_mid_surface(self):
+        plane = vtk.vtkPlaneSource()
+        plane.SetOrigin(0.0, 0.0, 0.0)
+        plane.SetPoint1(40.0, 0.0, 0.0)
+        plane.SetPoint2(0.0, 30.0, 0.0)
+        plane.SetResolution(40, 30)
+        triangles = vtk.vtkTriangleFilter()
+        triangles.SetInputConnection(plane.GetOutputPort())
+        thicken = thintissue.vtkThickenOpenSheetsFilter()
+        thicken.SetInputConnection(triangles.GetOutputPort())
+        thicken.SetThickness(2.0)
+        thicken.Update()
+        self.assertEqual(thicken.GetLastErrorMessage(), "")
+        self.assertEqual(thicken.GetThickenedPieces(), 1)
+        self.assertEqual(thicken.GetBorderLoops(), 1)
+        slab = thicken.GetOutput()
+        self.assertEqual(slab.GetNumberOfPoints(), 2 * 41 * 31)
+        bounds = slab.GetBounds()
+        self.assertAlmostEqual(bounds[4], -1.0)
+        self.assertAlmostEqual(bounds[5], 1.0)
+        edges = vtk.vtkFeatureEdges()
+        edges.SetInputData(slab)
+        edges.BoundaryEdgesOn()
+        edges.FeatureEdgesOff()
+        edges.NonManifoldEdgesOn()
+        edges.ManifoldEdgesOff()
+        edges.Update()
+        self.assertEqual(edges.GetOutput().GetNumberOfCells(), 0)  # closed
+
+        generator = thintissue.vtkCollisionMidSurfaceFilter()
+        generator.SetInputConnection(thicken.GetOutputPort())
+        generator.SetVertexCount(40)
+        generator.Update()
+        self.assertEqual(generator.GetLastErrorMessage(), "")
+        collision = generator.GetOutput()
+        self.assertEqual(collision.GetNumberOfPoints(), 40)
+        z = [collision.GetPoint(i)[2] for i in range(collision.GetNumberOfPoints())]
+        self.assertLess(max(abs(value) for value in z), 1e-6)  # the plane itself
+        radius = collision.GetPointData().GetArray("Radius")
+        self.assertAlmostEqual(radius.GetRange()[1], 1.0, places=6)
+
+        quiet = vtk.vtkObject.GetGlobalWarningDisplay()
+        vtk.vtkObject.GlobalWarningDisplayOff()
+        try:
+            thicken.SetThickness(-1.0)
+            thicken.Update()
+            self.assertIn("thickness must be positive", thicken.GetLastErrorMessage())
+            self.assertEqual(thicken.GetOutput().GetNumberOfPoints(), 0)
         finally:
             vtk.vtkObject.SetGlobalWarningDisplay(quiet)
 
