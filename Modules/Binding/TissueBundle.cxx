@@ -328,6 +328,46 @@ void addBundleMetadata(TissueBundle& bundle, const std::string& key, const std::
   }
 }
 
+void convertTissueBundleUnits(TissueBundle& bundle, const LengthUnits& units)
+{
+  const LengthUnits from = bundle.units ? *bundle.units : *lengthUnitsNamed("mm");
+  const double factor = from.metresPerUnit / units.metresPerUnit;
+  if (!(factor > 0.0) || !std::isfinite(factor))
+  {
+    throw InvalidInputError("bundle '" + bundle.visual.name + "': cannot convert from " +
+                            from.description() + " to " + units.description());
+  }
+  auto scale = [factor](std::vector<Vector3>& points)
+  {
+    for (Vector3& x : points)
+      x *= factor;
+  };
+  scale(bundle.visual.positions);
+  scale(bundle.collision.positions);
+  if (bundle.collision.pointAttributes.has("Radius"))
+  {
+    for (double& r : bundle.collision.pointAttributes.get("Radius").values)
+      r *= factor;
+  }
+  scale(bundle.simulation.nodes);
+  VisualCollisionBinding& binding = bundle.binding;
+  scale(binding.visual.positions);
+  scale(binding.collisionPositions);
+  for (double& r : binding.collisionRadii)
+    r *= factor;
+  for (BindingPath& path : binding.paths)
+    path.length *= factor;
+  TissueQuality& quality = bundle.quality;
+  quality.hausdorffDistance *= factor;
+  quality.largestThickness *= factor;
+  quality.worstDeviation.distance *= factor;
+  quality.worstDeviation.localThickness *= factor;
+  quality.worstDeviation.point *= factor;
+  quality.worstRegion.centre *= factor;
+  bundle.units = units;
+  addBundleMetadata(bundle, "convertedFrom", nlohmann::json(from.description()).dump());
+}
+
 namespace
 {
 

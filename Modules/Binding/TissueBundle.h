@@ -123,6 +123,15 @@ THINTISSUEBINDING_EXPORT void addBundleMetadata(TissueBundle& bundle,
   const std::string& key,
   const std::string& json);
 
+/// The same tissue in other units: every length of the bundle (visual,
+/// collision and binding positions, the collision radii, path lengths,
+/// hexahedron nodes, the quality's distances and places) multiplied by the
+/// ratio of the units, and `units` recorded (the metadata gets
+/// "convertedFrom"). Parameters and embeddings do not change. A bundle
+/// without recorded units is taken as millimetres (what it was made in).
+THINTISSUEBINDING_EXPORT void convertTissueBundleUnits(TissueBundle& bundle,
+  const LengthUnits& units);
+
 /// Writes the bundle (atomically). Throws FileError naming the file.
 THINTISSUEBINDING_EXPORT void writeTissueBundle(const std::string& path,
   const TissueBundle& bundle);

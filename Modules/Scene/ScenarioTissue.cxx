@@ -44,14 +44,14 @@ TissueBundle preparedMesh(const std::string& path, const std::string& units)
   return prepareTissue(mesh, settings);
 }
 
+/// A bundle converted to millimetres (the scene's unit) if it was made in
+/// others (a segmentation in metres).
 TissueBundle bundleInMillimetres(const std::string& path)
 {
   TissueBundle bundle = readTissueBundle(path);
   if (bundle.units && bundle.units->name != "mm")
   {
-    throw InvalidInputError("the bundle is in " + bundle.units->description() +
-                            "; the scene works in millimetres: prepare it with --units mm "
-                            "(ThinTissuePrepare --scale converts)");
+    convertTissueBundleUnits(bundle, *lengthUnitsNamed("mm"));
   }
   return bundle;
 }

@@ -120,6 +120,44 @@ TEST(TissueBundle, SameAnatomyPreparesTheSameInAnyUnit)
   EXPECT_TRUE(inMillimetres.binding.triangleRegion == inBinaryScale.binding.triangleRegion);
 }
 
+// A bundle converted to other units is the same tissue: every length
+// scaled, parameters and topology kept, the units and where they came from
+// recorded; converted back, the lengths return (to round-off).
+TEST(TissueBundle, ConvertedToOtherUnitsIsTheSameTissue)
+{
+  const TissueBundle millimetres = prepareTissue(makeMeniscus().visual, meniscusSettings(60));
+  TissueBundle metres = millimetres;
+  convertTissueBundleUnits(metres, *lengthUnitsNamed("m"));
+  ASSERT_TRUE(metres.units.has_value());
+  EXPECT_EQ(metres.units->name, "m");
+  EXPECT_TRUE(contains(metres.metadata, "\"convertedFrom\": \"mm\"")) << metres.metadata;
+  expectSameUpToScale(millimetres, metres, 0.001);
+  EXPECT_EQ(metres.binding.triangleRegion, millimetres.binding.triangleRegion);
+  ASSERT_EQ(metres.binding.paths.size(), millimetres.binding.paths.size());
+  for (std::size_t p = 0; p < metres.binding.paths.size(); ++p)
+  {
+    EXPECT_NEAR(metres.binding.paths[p].length, 0.001 * millimetres.binding.paths[p].length, 1e-15);
+  }
+  EXPECT_NEAR(
+    metres.quality.hausdorffDistance, 0.001 * millimetres.quality.hausdorffDistance, 1e-15);
+  const std::vector<double>& radii = metres.collision.pointAttributes.get("Radius").values;
+  const std::vector<double>& original = millimetres.collision.pointAttributes.get("Radius").values;
+  for (std::size_t v = 0; v < radii.size(); ++v)
+  {
+    EXPECT_NEAR(radii[v], 0.001 * original[v], 1e-15);
+  }
+  TissueBundle back = metres;
+  convertTissueBundleUnits(back, *lengthUnitsNamed("mm"));
+  for (std::size_t v = 0; v < back.visual.vertexCount(); ++v)
+  {
+    EXPECT_NEAR((back.visual.positions[v] - millimetres.visual.positions[v]).norm(), 0.0, 1e-12);
+  }
+  for (std::size_t n = 0; n < back.simulation.nodeCount(); ++n)
+  {
+    EXPECT_NEAR((back.simulation.nodes[n] - millimetres.simulation.nodes[n]).norm(), 0.0, 1e-12);
+  }
+}
+
 TEST(TissueBundle, UnitsGivenOrDetectedAreRecordedAndReadBack)
 {
   const TriangleMesh meniscus = makeMeniscus().visual;

@@ -404,6 +404,24 @@ TEST(TrainingScene, YourOwnTissueFromABundleIsCut)
   EXPECT_GT(scene.metrics().operations, 2);
   EXPECT_GT(scene.cutter()->collision().vertexCount(), scene.tissue().collision.vertexCount());
 
+  // The same sheet prepared in metres (as a segmentation comes) is
+  // converted to millimetres as it loads, and cuts the same way.
+  TriangleMesh inMetres = visual;
+  for (Vector3& x : inMetres.positions)
+    x *= 0.001;
+  settings.units = lengthUnitsNamed("m");
+  const std::string metresBundle =
+    (thintissue::testing::temporaryDirectory() / "own-sheet-metres.ttbundle").string();
+  writeTissueBundle(metresBundle, prepareTissue(inMetres, settings));
+  scenario.tissueFile = metresBundle;
+  ScriptedHapticDevice scopeAgain(recording.scope), instrumentAgain(recording.instrument);
+  TrainingScene converted(scenario, scopeAgain, instrumentAgain);
+  EXPECT_NEAR(boundingBoxOf(converted.tissue().collision.positions).sizes().maxCoeff(),
+    boundingBoxOf(scene.tissue().collision.positions).sizes().maxCoeff(),
+    0.01);
+  ASSERT_TRUE(converted.runTo(scenario.duration)) << converted.lastError();
+  EXPECT_GT(converted.metrics().operations, 2);
+
   // A bundle that is not there is refused (the scenario and key named).
   scenario.tissueFile = Data + "/Scenarios/no-such.ttbundle";
   EXPECT_THROW(TrainingScene(scenario, scope, instrument), InvalidInputError);
