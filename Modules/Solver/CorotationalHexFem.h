@@ -72,8 +72,15 @@ enum class LinearSolverKind
 /// against 251 (243) ms, 21: about even; the 10,000 block (35,670) 664 ms,
 /// 23, against 400-460 ms, 19; block-Jacobi CG 1,963 ms, 891. The
 /// 100,000 block (320K unknowns): multigrid 5.1 s, 21 iterations, where
-/// block-Jacobi does not converge in 1,000 iterations.
-constexpr int AutomaticDirectLimit = 25000;
+/// block-Jacobi does not converge in 1,000 iterations. Those ran on
+/// OpenBLAS's SSE3 kernels. Measured again on its AVX-512 ones (seventeenth
+/// session; 40 x 25 x nz blocks, the fem bench's load, medians over 25-35
+/// steps; stale factor against multigrid): 22,386 unknowns 192-214 against
+/// 240-260 ms; 25,584: 209 against 282-314 ms; 28,782: 259 against 244 ms;
+/// 31,980 (the bench's 10,000 block): 224 against 264 ms over 30 steps, but
+/// 296 against 219 ms in the bench. Hence 28,000: the faster factorization
+/// moved the even point up by about a tenth.
+constexpr int AutomaticDirectLimit = 28000;
 
 /// Unknowns up to which the factor bridges a topology change
 /// (CorotationalHexFemSettings::bridgeTopologyChanges). Measured (issue 20
