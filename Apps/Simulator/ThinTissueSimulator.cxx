@@ -9,7 +9,7 @@
 //                       [--compare DIR] [--size WxH]
 //                       [--devices replay|mouse|touch|auto] [--hd-library PATH]
 //                       [--scope-device NAME] [--instrument-device NAME]
-//                       [--record R.json] [--tissue FILE]
+//                       [--record R.json] [--tissue FILE] [--tissue-thickness T]
 //
 // Defaults: the shipped meniscus examination and its recording; without a
 // display the program re-runs itself under xvfb-run, offscreen. With
@@ -24,7 +24,8 @@
 // (libHD.so, or --hd-library), in the window; --devices auto: the Touch
 // devices when they open, else the mouse. --tissue FILE puts your own tissue in the
 // scenario: a bundle made by ThinTissuePrepare (.ttbundle) or a mesh file
-// prepared as it loads.
+// prepared as it loads (--tissue-thickness T: an open sheet, such as a
+// segmented cartilage, given T mm of thickness first).
 #include "SimulatorView.h"
 #include "SimulatorWindow.h"
 #include "TouchDevices.h"
@@ -48,6 +49,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -79,16 +81,18 @@ struct Options
   std::string instrumentDevice = "Instrument";
   std::string record;
   std::string tissue;
+  double tissueThickness = 0.0;
 };
 
 void printUsage()
 {
-  std::cerr << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
-               "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
-               "                           [--size WxH] [--devices replay|mouse|touch|auto]\n"
-               "                           [--hd-library PATH] [--scope-device NAME]\n"
-               "                           [--instrument-device NAME] [--record R.json]\n"
-               "                           [--tissue BUNDLE.ttbundle|MESH]\n";
+  std::cerr
+    << "usage: ThinTissueSimulator [--scenario S.json] [--replay R.json] [--offscreen]\n"
+       "                           [--snapshots T1,T2,...] [--output DIR] [--compare DIR]\n"
+       "                           [--size WxH] [--devices replay|mouse|touch|auto]\n"
+       "                           [--hd-library PATH] [--scope-device NAME]\n"
+       "                           [--instrument-device NAME] [--record R.json]\n"
+       "                           [--tissue BUNDLE.ttbundle|MESH] [--tissue-thickness T]\n";
 }
 
 /// The scenario with its tissue replaced by the user's: a bundle made by
@@ -176,6 +180,11 @@ bool parseArguments(int argc, char* argv[], Options& o)
     else if (a == "--tissue" && hasValue)
     {
       o.tissue = argv[++i];
+    }
+    else if (a == "--tissue-thickness" && hasValue &&
+             std::sscanf(argv[++i], "%lf", &o.tissueThickness) == 1 && o.tissueThickness > 0.0 &&
+             std::isfinite(o.tissueThickness))
+    {
     }
     else if (a == "--compare" && hasValue)
     {
@@ -425,6 +434,7 @@ int main(int argc, char* argv[])
     if (!options.tissue.empty())
     {
       useTissueFile(scenario, options.tissue);
+      scenario.tissueThickness = options.tissueThickness;
     }
     SessionDevices devices(recording, options);
     if (options.offscreen && devices.touch())

@@ -193,6 +193,11 @@ void readTissueSource(const ScenarioReader& r, ScenarioDescription& s)
   {
     r.fail("tissue.units", "unknown unit '" + s.tissueUnits + "' (mm, cm, m, um)");
   }
+  s.tissueThickness = r.number("tissue.thickness", 0.0, false);
+  if (s.tissueThickness < 0.0)
+  {
+    r.fail("tissue.thickness", "must not be negative (mm; 0: a closed mesh)");
+  }
   s.fixedNodes = r.text("tissue.fixed", s.fixedNodes);
   if (s.fixedNodes != "model" && s.fixedNodes != "none" && s.fixedNodes != "ends" &&
       s.fixedNodes != "bottom")

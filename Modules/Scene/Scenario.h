@@ -44,6 +44,9 @@ struct ScenarioDescription
   /// "file": the mesh's length unit ("mm", "cm", "m", "um"); empty:
   /// detected from its size (LengthUnits.h). The scene works in mm.
   std::string tissueUnits;
+  /// "file": the thickness (mm) given to an open sheet (a tissue segmented
+  /// as one surface, SheetThickening.h); 0: the mesh must be closed.
+  double tissueThickness = 0.0;
   /// Nodes held still: "model" (the procedural model's own attachments;
   /// none for files and bundles), "none", "ends" (both ends of the longest
   /// side, 5 % of it each) or "bottom" (the lowest 10 % of the height).

@@ -1,6 +1,8 @@
 #include "ScenarioTissue.h"
 
 #include "MeshImport.h"
+#include "MeshValidation.h"
+#include "SheetThickening.h"
 #include "ThinSheetModel.h"
 #include "ThinTissueError.h"
 #include "TissueBundle.h"
@@ -29,8 +31,9 @@ TissueModel fromBundle(TissueBundle bundle, ScenarioTissue& tissue)
   return model;
 }
 
-/// A mesh file in millimetres (the scene's unit), prepared.
-TissueBundle preparedMesh(const std::string& path, const std::string& units)
+/// A mesh file in millimetres (the scene's unit), thickened if asked (an
+/// open sheet), prepared.
+TissueBundle preparedMesh(const std::string& path, const std::string& units, double thickness)
 {
   TriangleMesh mesh = readTriangleMesh(path);
   const double largest = mesh.boundingBox().sizes().maxCoeff();
@@ -39,9 +42,22 @@ TissueBundle preparedMesh(const std::string& path, const std::string& units)
   const double toMillimetres = unit.metresPerUnit / 0.001;
   for (Vector3& x : mesh.positions)
     x *= toMillimetres;
+  if (thickness > 0.0)
+    mesh = thickenOpenSheets(mesh, thickness);
   TissuePreparationSettings settings;
   settings.units = lengthUnitsNamed("mm");
-  return prepareTissue(mesh, settings);
+  try
+  {
+    return prepareTissue(mesh, settings);
+  }
+  catch (const InvalidInputError& e)
+  {
+    const bool open = thickness == 0.0 && validateTriangleMesh(mesh).borderEdges.count > 0;
+    throw InvalidInputError(e.what() + std::string(open ? " (a tissue segmented as one open "
+                                                          "surface: give 'tissue.thickness' in mm, "
+                                                          "or --tissue-thickness)"
+                                                        : ""));
+  }
 }
 
 /// A bundle converted to millimetres (the scene's unit) if it was made in
@@ -63,7 +79,7 @@ TissueModel preparedFile(const ScenarioDescription& s, ScenarioTissue& tissue)
   {
     if (s.tissueModel == "bundle")
       return fromBundle(bundleInMillimetres(s.tissueFile), tissue);
-    return fromBundle(preparedMesh(s.tissueFile, s.tissueUnits), tissue);
+    return fromBundle(preparedMesh(s.tissueFile, s.tissueUnits, s.tissueThickness), tissue);
   }
   catch (const FileError& e)
   {

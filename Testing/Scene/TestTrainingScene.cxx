@@ -2,6 +2,7 @@
 // from its recording (the hook presses the inner border onto the plateau and
 // lets go: wrinkles), deterministic bit for bit, with metrics; scenario and
 // recording files validated with the file and the key named.
+#include "MeshImport.h"
 #include "MouseHapticDevice.h"
 #include "ScriptedHapticDevice.h"
 #include "ThinSheetModel.h"
@@ -119,6 +120,9 @@ TEST(TrainingScene, BadScenariosNameTheFileAndTheKey)
   const std::string wrinkles =
     messageOf(R"({"version": 1, "tissue": {"model": "sheet", "wrinkles": true}})");
   EXPECT_NE(wrinkles.find("key 'tissue.wrinkles'"), std::string::npos) << wrinkles;
+  const std::string thickness =
+    messageOf(R"({"version": 1, "tissue": {"model": "file", "file": "a.obj", "thickness": -2}})");
+  EXPECT_NE(thickness.find("key 'tissue.thickness'"), std::string::npos) << thickness;
   EXPECT_THROW(readScenario(Data + "/Scenarios/no-such-scenario.json"), FileError);
   const std::string path =
     (thintissue::testing::temporaryDirectory() / "bad-recording.json").string();
@@ -421,6 +425,56 @@ TEST(TrainingScene, YourOwnTissueFromABundleIsCut)
     0.01);
   ASSERT_TRUE(converted.runTo(scenario.duration)) << converted.lastError();
   EXPECT_GT(converted.metrics().operations, 2);
+
+  // A tissue segmented as one open sheet (the sheet's upper face alone, in
+  // metres, as a mesh file): refused with the key that helps, then given
+  // 2 mm as it loads.
+  TriangleMesh face;
+  face.name = "upper face";
+  std::vector<int> kept(visual.vertexCount(), -1);
+  for (const Triangle& t : visual.triangles)
+  {
+    bool upper = true;
+    for (int v : t)
+      upper = upper && visual.positions[v].z() > 7.0 + 0.5;
+    if (!upper)
+      continue;
+    Triangle corners;
+    for (int k = 0; k < 3; ++k)
+    {
+      int& index = kept[t[k]];
+      if (index < 0)
+      {
+        index = static_cast<int>(face.positions.size());
+        face.positions.push_back(0.001 * visual.positions[t[k]]);
+      }
+      corners[k] = index;
+    }
+    face.triangles.push_back(corners);
+  }
+  const std::string facePath = (thintissue::testing::temporaryDirectory() / "face.obj").string();
+  writeObj(face, facePath);
+  scenario.tissueModel = "file";
+  scenario.tissueFile = facePath;
+  scenario.tissueUnits = "m";
+  try
+  {
+    TrainingScene refused(scenario, scope, instrument);
+    ADD_FAILURE() << "an open sheet was prepared without a thickness";
+  }
+  catch (const InvalidInputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("give 'tissue.thickness' in mm"), std::string::npos)
+      << e.what();
+  }
+  scenario.tissueThickness = 2.0;
+  ScriptedHapticDevice scopeThick(recording.scope), instrumentThick(recording.instrument);
+  TrainingScene thick(scenario, scopeThick, instrumentThick);
+  const Vector3 size = boundingBoxOf(thick.tissue().visual.positions).sizes();
+  EXPECT_NEAR(size.z(), 2.0, 0.05); // a 2 mm slab round the face, in mm
+  EXPECT_GT(size.maxCoeff(), 55.0);
+  scenario.tissueModel = "bundle";
+  scenario.tissueThickness = 0.0;
 
   // A bundle that is not there is refused (the scenario and key named).
   scenario.tissueFile = Data + "/Scenarios/no-such.ttbundle";
