@@ -365,6 +365,12 @@ void convertTissueBundleUnits(TissueBundle& bundle, const LengthUnits& units)
   quality.worstDeviation.point *= factor;
   quality.worstRegion.centre *= factor;
   bundle.units = units;
+  // The metadata says what a file read back will be: the new units and the
+  // quality in them.
+  addBundleMetadata(bundle,
+    "units",
+    unitsJson({ units, false, "converted from " + from.description(), true }).dump());
+  addBundleMetadata(bundle, "quality", quality.toJson());
   addBundleMetadata(bundle, "convertedFrom", nlohmann::json(from.description()).dump());
 }
 

@@ -146,6 +146,15 @@ TEST(TissueBundle, ConvertedToOtherUnitsIsTheSameTissue)
   {
     EXPECT_NEAR(radii[v], 0.001 * original[v], 1e-15);
   }
+  // Written and read back: the units and the quality of the conversion.
+  const std::string path =
+    (thintissue::testing::temporaryDirectory() / "converted.ttbundle").string();
+  writeTissueBundle(path, metres);
+  const TissueBundle loaded = readTissueBundle(path);
+  ASSERT_TRUE(loaded.units.has_value());
+  EXPECT_EQ(loaded.units->name, "m");
+  EXPECT_EQ(loaded.quality.toJson(), metres.quality.toJson());
+  std::filesystem::remove(path);
   TissueBundle back = metres;
   convertTissueBundleUnits(back, *lengthUnitsNamed("mm"));
   for (std::size_t v = 0; v < back.visual.vertexCount(); ++v)
