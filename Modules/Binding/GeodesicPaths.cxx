@@ -819,32 +819,14 @@ PatchPath shortestPathOnPatch(const TriangleMesh& mesh,
       }
     }
     result.touchesRim = result.touchesRim || onRim;
-    if (!points.empty())
-    {
-      const SurfacePoint& last = points.back();
-      const bool same =
-        point.isVertex()
-          ? last.vertex == point.vertex
-          : (!last.isVertex() && last.edgeStart == point.edgeStart &&
-              last.edgeEnd == point.edgeEnd &&
-              std::abs(last.edgeParameter - point.edgeParameter) <= EndpointTolerance);
-      if (same)
-      {
-        continue;
-      }
-    }
-    points.push_back(point);
+    result.path.appendMerged(point, EndpointTolerance);
   }
   if (points.front().vertex != source || points.back().vertex != target)
   {
     throw Error("geodesic path on " + meshLabel(mesh) + ": CGAL's path from vertex " +
                 std::to_string(source) + " does not run to vertex " + std::to_string(target));
   }
-  for (std::size_t i = 1; i < points.size(); ++i)
-  {
-    result.path.length +=
-      (points[i].position(mesh.positions) - points[i - 1].position(mesh.positions)).norm();
-  }
+  result.path.measure(mesh.positions);
   return result;
 }
 

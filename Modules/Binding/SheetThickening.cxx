@@ -1,5 +1,6 @@
 #include "SheetThickening.h"
 
+#include "MeshPieces.h"
 #include "ThinTissueError.h"
 #include "TriangleMeshAdjacency.h"
 
@@ -60,38 +61,21 @@ void checkEdges(const TriangleMesh& mesh, const TriangleMeshAdjacency& adjacency
   }
 }
 
-/// Per triangle its piece (triangles joined through their shared edges).
+/// Per triangle its piece (MeshPieces.h: joined through shared edges).
 std::vector<int> trianglePieces(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   int& pieceCount)
 {
+  const std::vector<std::vector<int>> pieces = edgeConnectedTriangles(mesh, adjacency);
   std::vector<int> piece(mesh.triangleCount(), -1);
-  std::vector<int> stack;
-  pieceCount = 0;
-  for (std::size_t seed = 0; seed < mesh.triangleCount(); ++seed)
+  for (std::size_t p = 0; p < pieces.size(); ++p)
   {
-    if (piece[seed] >= 0)
+    for (const int t : pieces[p])
     {
-      continue;
+      piece[t] = static_cast<int>(p);
     }
-    piece[seed] = pieceCount;
-    stack.assign(1, static_cast<int>(seed));
-    while (!stack.empty())
-    {
-      const int t = stack.back();
-      stack.pop_back();
-      for (int k = 0; k < 3; ++k)
-      {
-        const int n = adjacency.neighbourAcross(t, k);
-        if (n >= 0 && piece[n] < 0)
-        {
-          piece[n] = pieceCount;
-          stack.push_back(n);
-        }
-      }
-    }
-    ++pieceCount;
   }
+  pieceCount = static_cast<int>(pieces.size());
   return piece;
 }
 

@@ -664,24 +664,7 @@ std::optional<SurfacePath> pathThroughSleeve(const TriangleMesh& mesh,
   const std::vector<Bend>& bends)
 {
   SurfacePath path;
-  auto add = [&](const SurfacePoint& point)
-  {
-    if (!path.points.empty())
-    {
-      const SurfacePoint& last = path.points.back();
-      const bool same =
-        point.isVertex()
-          ? last.vertex == point.vertex
-          : (!last.isVertex() && last.edgeStart == point.edgeStart &&
-              last.edgeEnd == point.edgeEnd &&
-              std::abs(last.edgeParameter - point.edgeParameter) <= EndpointTolerance);
-      if (same)
-      {
-        return;
-      }
-    }
-    path.points.push_back(point);
-  };
+  auto add = [&path](const SurfacePoint& point) { path.appendMerged(point, EndpointTolerance); };
   const std::size_t target = bends.size() - 1;
   std::vector<std::array<int, 2>> runs(bends.size(), std::array<int, 2>{ { -1, -1 } });
   for (std::size_t b = 1; b < target; ++b)
@@ -724,12 +707,7 @@ std::optional<SurfacePath> pathThroughSleeve(const TriangleMesh& mesh,
   {
     add(SurfacePoint::atVertex(bends[b].corner.vertex));
   }
-  for (std::size_t i = 1; i < path.points.size(); ++i)
-  {
-    path.length +=
-      (path.points[i].position(mesh.positions) - path.points[i - 1].position(mesh.positions))
-        .norm();
-  }
+  path.measure(mesh.positions);
   return path;
 }
 

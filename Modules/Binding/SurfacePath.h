@@ -6,6 +6,8 @@
 
 #include "TriangleMesh.h"
 
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 namespace thintissue
@@ -51,6 +53,35 @@ struct SurfacePath
 {
   std::vector<SurfacePoint> points;
   double length = 0.0;
+
+  /// Appends `point` unless it is the last point again (the same vertex, or
+  /// the same edge within `tolerance` in edge parameter).
+  void appendMerged(const SurfacePoint& point, double tolerance)
+  {
+    if (!points.empty())
+    {
+      const SurfacePoint& last = points.back();
+      const bool same = point.isVertex()
+                          ? last.vertex == point.vertex
+                          : (!last.isVertex() && last.edgeStart == point.edgeStart &&
+                              last.edgeEnd == point.edgeEnd &&
+                              std::abs(last.edgeParameter - point.edgeParameter) <= tolerance);
+      if (same)
+      {
+        return;
+      }
+    }
+    points.push_back(point);
+  }
+  /// Sets `length` to the sum of the straight segments between the points.
+  void measure(const std::vector<Vector3>& positions)
+  {
+    length = 0.0;
+    for (std::size_t i = 1; i < points.size(); ++i)
+    {
+      length += (points[i].position(positions) - points[i - 1].position(positions)).norm();
+    }
+  }
 };
 
 } // namespace thintissue

@@ -10,14 +10,9 @@
 namespace thintissue
 {
 
-namespace
+std::vector<std::vector<int>> edgeConnectedTriangles(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency)
 {
-
-/// Triangles grouped by pieces (edge-connected), each group in increasing
-/// triangle order, groups in the order of their first triangle.
-std::vector<std::vector<int>> edgeConnectedTriangles(const TriangleMesh& mesh)
-{
-  const TriangleMeshAdjacency adjacency(mesh);
   UnionFind pieces(mesh.triangleCount());
   for (int e = 0; e < static_cast<int>(adjacency.edgeCount()); ++e)
   {
@@ -41,6 +36,9 @@ std::vector<std::vector<int>> edgeConnectedTriangles(const TriangleMesh& mesh)
   }
   return groups;
 }
+
+namespace
+{
 
 /// Copies the triangles into a mesh of their own; `localIndex` (one entry
 /// per input vertex, all -1) is used as scratch and left all -1.
@@ -135,14 +133,15 @@ std::string MeshPiece::description() const
 
 std::size_t countPieces(const TriangleMesh& mesh)
 {
-  return edgeConnectedTriangles(mesh).size();
+  return edgeConnectedTriangles(mesh, TriangleMeshAdjacency(mesh)).size();
 }
 
 std::vector<MeshPiece> splitIntoPieces(const TriangleMesh& mesh)
 {
   std::vector<MeshPiece> pieces;
   std::vector<int> localIndex(mesh.vertexCount(), -1);
-  for (const std::vector<int>& triangles : edgeConnectedTriangles(mesh))
+  for (const std::vector<int>& triangles :
+    edgeConnectedTriangles(mesh, TriangleMeshAdjacency(mesh)))
   {
     pieces.push_back(extractPiece(mesh, triangles, localIndex));
     measure(pieces.back());

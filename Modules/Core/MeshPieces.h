@@ -13,6 +13,7 @@
 
 #include "ThinTissueCoreModule.h"
 #include "TriangleMesh.h"
+#include "TriangleMeshAdjacency.h"
 
 #include <string>
 #include <vector>
@@ -38,6 +39,11 @@ struct MeshPiece
   /// "piece 3: 24 vertices, 44 triangles, area 0.31, centre (1.2, 3.4, 5.6)".
   std::string description() const;
 };
+
+/// The triangles of each piece (joined through shared edges), each list in
+/// increasing order, pieces in the order of their first triangle.
+THINTISSUECORE_EXPORT std::vector<std::vector<int>> edgeConnectedTriangles(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency);
 
 /// How many pieces `mesh` has (without copying them).
 THINTISSUECORE_EXPORT std::size_t countPieces(const TriangleMesh& mesh);
