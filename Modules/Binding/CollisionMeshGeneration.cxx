@@ -647,6 +647,71 @@ void openChannelsBetweenHoles(const TriangleMesh& mesh,
       { { holes.first, holes.second, nearest.second[0], nearest.second[1] } });
 }
 
+/// Reopens the bays the closing cut off from the outside (`empty` as
+/// shadowLoops made it): a gap reaching in from the rim through a mouth
+/// narrower than the closing, such as a longitudinal tear's slit whose
+/// inner lip broke off in the segmentation, its free tip against the
+/// other lip (issue 14: fine longitudinal tear, seed 1023; the filled slit
+/// left the collision mesh spanning it). A piece of the closed raster's
+/// empty cells, of SmallestHole cells at least, all outside before the
+/// closing, gets its empty cells back, joined to the outside along the
+/// shortest channel of the raster's empty cells, so the outline follows
+/// the bay in. (Every strip the closing filled was tried too: a ragged,
+/// perforated rim's slits then drew the border into the tissue, and
+/// fewer tears prepared.)
+void reopenBays(const ShadowRaster& raster,
+  const std::vector<int>& piece,
+  const std::vector<int>& closedPiece,
+  const std::vector<int>& closedCounts,
+  std::vector<char>& empty)
+{
+  std::vector<int> from(piece.size(), -2);
+  std::vector<int> queue;
+  for (int bay = 1; bay < static_cast<int>(closedCounts.size()); ++bay)
+  {
+    if (closedCounts[bay] < SmallestHole)
+      continue;
+    queue.clear();
+    for (int c = 0; c < static_cast<int>(piece.size()); ++c)
+      if (closedPiece[c] == bay && piece[c] == 0)
+        queue.push_back(c);
+    if (static_cast<int>(queue.size()) < closedCounts[bay])
+      continue; // a hole before the closing too: kept or filled as a hole
+    for (int c : queue)
+    {
+      from[c] = -1;
+      empty[c] = 1;
+    }
+    // Breadth first over the raster's empty cells to the outside.
+    for (std::size_t k = 0; k < queue.size(); ++k)
+    {
+      const int c = queue[k];
+      if (closedPiece[c] == 0)
+      {
+        for (int g = c; g >= 0; g = from[g])
+          empty[g] = 1;
+        break;
+      }
+      const int i = c % raster.width;
+      const int j = c / raster.width;
+      const int next[4][2] = { { i + 1, j }, { i - 1, j }, { i, j + 1 }, { i, j - 1 } };
+      for (const auto& [x, y] : next)
+      {
+        if (x < 0 || y < 0 || x >= raster.width || y >= raster.height)
+          continue;
+        const int n = static_cast<int>(raster.at(x, y));
+        if (piece[n] == 0 && from[n] == -2)
+        {
+          from[n] = c;
+          queue.push_back(n);
+        }
+      }
+    }
+    for (int c : queue)
+      from[c] = -2;
+  }
+}
+
 /// The loops of the surface's shadow along the axis, from its raster: for
 /// a rough surface (a segmentation's staircase), whose silhouette edges
 /// wander over the step walls and may cross themselves. Holes of fewer
@@ -667,6 +732,7 @@ std::vector<Loop> shadowLoops(const TriangleMesh& mesh, const ProjectedSurface& 
   std::vector<char> empty(piece.size(), 0);
   for (std::size_t c = 0; c < piece.size(); ++c)
     empty[c] = closedPiece[c] == 0 || (piece[c] > 0 && cellCounts[piece[c]] >= SmallestHole);
+  reopenBays(raster, piece, closedPiece, closedCounts, empty);
   return traceCellBorders(raster, empty);
 }
 
