@@ -1315,6 +1315,113 @@ Loop followBays(const ProjectedSurface& surface,
   return border;
 }
 
+/// A border segment: its loop among the borders and its first point.
+struct BorderSegment
+{
+  std::size_t loop = 0;
+  std::size_t index = 0;
+};
+
+/// Two segments of the border loops that cross (of one loop or of two),
+/// the first found; false when the borders are simple and apart.
+bool crossingBorderSegments(const std::vector<Loop>& borders, std::array<BorderSegment, 2>& found)
+{
+  for (std::size_t a = 0; a < borders.size(); ++a)
+    for (std::size_t i = 0; i < borders[a].size(); ++i)
+    {
+      const Vector2& p = borders[a][i];
+      const Vector2& q = borders[a][(i + 1) % borders[a].size()];
+      for (std::size_t b = a; b < borders.size(); ++b)
+        for (std::size_t j = b == a ? i + 1 : 0; j < borders[b].size(); ++j)
+        {
+          if (segmentsCross(p, q, borders[b][j], borders[b][(j + 1) % borders[b].size()]))
+          {
+            found = { { { a, i }, { b, j } } };
+            return true;
+          }
+        }
+    }
+  return false;
+}
+
+/// The point of the closed polygon nearest to q.
+Vector2 nearestOnLoop(const Loop& loop, const Vector2& q)
+{
+  Vector2 nearest = loop.front();
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    const Vector2 p = nearestOnSegment(loop[i], loop[(i + 1) % loop.size()], q);
+    if ((p - q).squaredNorm() < (nearest - q).squaredNorm())
+      nearest = p;
+  }
+  return nearest;
+}
+
+/// Borders that cross, untangled (issue 14: "its outline crosses itself"
+/// on eight sweep cases, coarse cartilages and torn menisci, a sheet).
+/// Each loop is moved in by its own local half thickness, spread again and
+/// put onto tissue, so on a ragged, thin rim two borders a notch apart, or
+/// the stretches of one border either side of a notch, can cross. The four
+/// points of two crossing segments move halfway back to their own outline
+/// loop (where the rim is), at most `BackSteps` times for a crossing, a
+/// point only where the tissue is `thinnest` thick at least (so its sphere
+/// still has a radius); one
+/// that remains drops the point of the two segments that moved in
+/// farthest (the inner lattice takes its place in the count). A loop
+/// keeps three points at least: past that, the crossing stays (and the
+/// triangulation reports it).
+void untangleBorders(const ProjectedSurface& surface,
+  std::vector<Loop>& borders,
+  const std::vector<Loop>& outline,
+  double thinnest)
+{
+  constexpr int BackSteps = 6;
+  std::array<BorderSegment, 2> crossing;
+  int steps = 0;
+  std::array<std::size_t, 2> last{ { borders.size(), 0 } };
+  for (int round = 0; round < 200 && crossingBorderSegments(borders, crossing); ++round)
+  {
+    // The same crossing again counts its steps back; a new one starts anew.
+    const std::array<std::size_t, 2> key{ { crossing[0].loop * 100000 + crossing[0].index,
+      crossing[1].loop * 100000 + crossing[1].index } };
+    steps = key == last ? steps + 1 : 0;
+    last = key;
+    std::vector<std::pair<std::size_t, std::size_t>> ends;
+    for (const BorderSegment& segment : crossing)
+    {
+      const std::size_t n = borders[segment.loop].size();
+      ends.emplace_back(segment.loop, segment.index);
+      ends.emplace_back(segment.loop, (segment.index + 1) % n);
+    }
+    if (steps < BackSteps)
+    {
+      for (const auto& [loop, i] : ends)
+      {
+        Vector2& q = borders[loop][i];
+        const Vector2 back = 0.5 * (q + nearestOnLoop(outline[loop], q));
+        double middle = 0.0;
+        if (halfThicknessAt(surface, back, middle) >= thinnest)
+          q = back;
+      }
+      continue;
+    }
+    auto depth = [&](const std::pair<std::size_t, std::size_t>& end)
+    {
+      const Vector2& q = borders[end.first][end.second];
+      return borders[end.first].size() > 3 ? (nearestOnLoop(outline[end.first], q) - q).norm()
+                                           : -1.0;
+    };
+    const auto dropped = *std::max_element(
+      ends.begin(), ends.end(), [&](const auto& x, const auto& y) { return depth(x) < depth(y); });
+    if (depth(dropped) < 0.0)
+      return;
+    borders[dropped.first].erase(
+      borders[dropped.first].begin() + static_cast<std::ptrdiff_t>(dropped.second));
+    steps = 0;
+    last = { { borders.size(), 0 } };
+  }
+}
+
 /// At least `interiorCount` lattice points inside the borders (the largest
 /// spacing that gives them, by bisection), kept off the border; fewer if
 /// none fits.
@@ -1788,6 +1895,7 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
       ThinnestShare * result.largestThickness,
       std::max(2, counts[k] / 3)));
   }
+  untangleBorders(surface, borders, outline, ThinnestShare * result.largestThickness);
   std::vector<Vector2> points;
   int placed = 0;
   for (const Loop& border : borders)

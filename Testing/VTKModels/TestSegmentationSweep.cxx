@@ -567,3 +567,15 @@ TEST(SegmentationSweep, ABayBehindANarrowMouthIsFollowed)
 {
   EXPECT_EQ(prepareAndCheck(segmented(tissueModel("LongitudinalTear"), sweepCase(1023)), true), "");
 }
+
+// The coarse longitudinal tear of seed 1008: each border loop is moved in
+// by its own half thickness, spread again and put onto tissue, and on the
+// ragged rim beside the tear two borders crossed ("its outline crosses
+// itself"). Crossing borders are untangled now (their points moved back
+// toward the rim, else the deepest dropped), and the tear prepares, binds
+// and takes a press.
+TEST(SegmentationSweep, CrossingBordersAreUntangled)
+{
+  EXPECT_EQ(
+    prepareAndCheck(segmented(tissueModel("LongitudinalTear"), sweepCase(1008, true)), true), "");
+}
