@@ -1368,32 +1368,36 @@ Vector2 nearestOnLoop(const Loop& loop, const Vector2& q)
 /// still has a radius); one
 /// that remains drops the point of the two segments that moved in
 /// farthest (the inner lattice takes its place in the count). A loop
-/// keeps three points at least: past that, the crossing stays (and the
-/// triangulation reports it).
+/// keeps three points at least, and at most three points are dropped in
+/// all: past that the borders are left as placed and the triangulation
+/// reports the crossing. A ragged rim's tangles took one drop at most; a
+/// band twisted through 90 degrees (the PCL) overlaps itself seen along
+/// any axis, and untangled at the cost of 25 points its one-axis
+/// mid-surface came 24 mm from the tissue: it must fail, so that the
+/// automatic method takes the band.
 void untangleBorders(const ProjectedSurface& surface,
   std::vector<Loop>& borders,
   const std::vector<Loop>& outline,
   double thinnest)
 {
   constexpr int BackSteps = 6;
+  constexpr int MostDropped = 3;
+  const std::vector<Loop> placed = borders;
+  int droppedCount = 0;
+  using BorderPoint = std::pair<std::size_t, std::size_t>; // loop, index
+  // Steps back taken per crossing (its two segments' first points); the
+  // indices shift when a point is dropped, so the counts start anew then.
+  std::map<std::array<BorderPoint, 2>, int> stepsBack;
   std::array<BorderSegment, 2> crossing;
-  int steps = 0;
-  std::array<std::size_t, 2> last{ { borders.size(), 0 } };
   for (int round = 0; round < 200 && crossingBorderSegments(borders, crossing); ++round)
   {
-    // The same crossing again counts its steps back; a new one starts anew.
-    const std::array<std::size_t, 2> key{ { crossing[0].loop * 100000 + crossing[0].index,
-      crossing[1].loop * 100000 + crossing[1].index } };
-    steps = key == last ? steps + 1 : 0;
-    last = key;
-    std::vector<std::pair<std::size_t, std::size_t>> ends;
+    std::vector<BorderPoint> ends;
     for (const BorderSegment& segment : crossing)
     {
-      const std::size_t n = borders[segment.loop].size();
       ends.emplace_back(segment.loop, segment.index);
-      ends.emplace_back(segment.loop, (segment.index + 1) % n);
+      ends.emplace_back(segment.loop, (segment.index + 1) % borders[segment.loop].size());
     }
-    if (steps < BackSteps)
+    if (stepsBack[{ { ends[0], ends[2] } }]++ < BackSteps)
     {
       for (const auto& [loop, i] : ends)
       {
@@ -1405,20 +1409,25 @@ void untangleBorders(const ProjectedSurface& surface,
       }
       continue;
     }
-    auto depth = [&](const std::pair<std::size_t, std::size_t>& end)
+    auto depth = [&](const BorderPoint& end)
     {
       const Vector2& q = borders[end.first][end.second];
       return borders[end.first].size() > 3 ? (nearestOnLoop(outline[end.first], q) - q).norm()
                                            : -1.0;
     };
-    const auto dropped = *std::max_element(
-      ends.begin(), ends.end(), [&](const auto& x, const auto& y) { return depth(x) < depth(y); });
+    const BorderPoint dropped = *std::max_element(ends.begin(),
+      ends.end(),
+      [&](const BorderPoint& x, const BorderPoint& y) { return depth(x) < depth(y); });
     if (depth(dropped) < 0.0)
       return;
+    if (++droppedCount > MostDropped)
+    {
+      borders = placed; // not a ragged rim: an outline that overlaps itself
+      return;
+    }
     borders[dropped.first].erase(
       borders[dropped.first].begin() + static_cast<std::ptrdiff_t>(dropped.second));
-    steps = 0;
-    last = { { borders.size(), 0 } };
+    stepsBack.clear();
   }
 }
 
