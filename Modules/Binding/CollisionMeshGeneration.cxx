@@ -536,6 +536,47 @@ constexpr int SmallestHole = 16;
 constexpr int ChannelReach = 4;
 constexpr int ChannelRefinement = 8;
 
+/// The shortest channel of 4-neighbour cells of `r` that `passable`
+/// admits, breadth first from `seeds` (in order) to the first cell that
+/// `reached` accepts: its cells from that one back to a seed, or none.
+template <class Passable, class Reached>
+std::vector<int> shortestCellChannel(const ShadowRaster& r,
+  const std::vector<int>& seeds,
+  Passable passable,
+  Reached reached)
+{
+  std::vector<int> from(static_cast<std::size_t>(r.width) * r.height, -2);
+  std::vector<int> queue = seeds;
+  for (int c : seeds)
+    from[c] = -1;
+  for (std::size_t k = 0; k < queue.size(); ++k)
+  {
+    const int c = queue[k];
+    if (reached(c))
+    {
+      std::vector<int> channel;
+      for (int g = c; g >= 0; g = from[g])
+        channel.push_back(g);
+      return channel;
+    }
+    const int i = c % r.width;
+    const int j = c / r.width;
+    const int next[4][2] = { { i + 1, j }, { i - 1, j }, { i, j + 1 }, { i, j - 1 } };
+    for (const auto& [x, y] : next)
+    {
+      if (x < 0 || y < 0 || x >= r.width || y >= r.height)
+        continue;
+      const int n = static_cast<int>(r.at(x, y));
+      if (from[n] == -2 && passable(n))
+      {
+        from[n] = c;
+        queue.push_back(n);
+      }
+    }
+  }
+  return {};
+}
+
 /// Opens the cells of `r` along a see-through channel from hole a to hole
 /// b (pieces of `piece`) near cells ca and cb, if the finer raster of the
 /// cells around them has one; whether it had.
@@ -560,35 +601,18 @@ bool openChannel(const TriangleMesh& mesh,
     return r.at(i0 + f % fine.width / ChannelRefinement, j0 + f / fine.width / ChannelRefinement);
   };
   // Breadth first over the fine empty cells, from those in hole a.
-  std::vector<int> from(fine.inside.size(), -2);
-  std::vector<int> queue;
+  std::vector<int> seeds;
   for (int f = 0; f < static_cast<int>(fine.inside.size()); ++f)
     if (!fine.inside[f] && piece[coarse(f)] == a)
-    {
-      from[f] = -1;
-      queue.push_back(f);
-    }
-  for (std::size_t k = 0; k < queue.size(); ++k)
-  {
-    const int f = queue[k];
-    if (piece[coarse(f)] == b)
-    {
-      for (int g = f; g >= 0; g = from[g])
-        r.inside[coarse(g)] = 0;
-      return true;
-    }
-    const int i = f % fine.width;
-    const int j = f / fine.width;
-    const int next[4][2] = { { i + 1, j }, { i - 1, j }, { i, j + 1 }, { i, j - 1 } };
-    for (const auto& [x, y] : next)
-      if (x >= 0 && y >= 0 && x < fine.width && y < fine.height && !fine.inside[fine.at(x, y)] &&
-          from[fine.at(x, y)] == -2)
-      {
-        from[fine.at(x, y)] = f;
-        queue.push_back(static_cast<int>(fine.at(x, y)));
-      }
-  }
-  return false;
+      seeds.push_back(f);
+  const std::vector<int> channel = shortestCellChannel(
+    fine,
+    seeds,
+    [&](int f) { return !fine.inside[f]; },
+    [&](int f) { return piece[coarse(f)] == b; });
+  for (int f : channel)
+    r.inside[coarse(f)] = 0;
+  return !channel.empty();
 }
 
 /// A tear's slit narrower than a cell somewhere along it leaves the raster
@@ -665,50 +689,25 @@ void reopenBays(const ShadowRaster& raster,
   const std::vector<int>& closedCounts,
   std::vector<char>& empty)
 {
-  std::vector<int> from(piece.size(), -2);
-  std::vector<int> queue;
-  for (int bay = 1; bay < static_cast<int>(closedCounts.size()); ++bay)
+  // Each closed piece's cells that were outside before the closing.
+  std::vector<std::vector<int>> outsideBefore(closedCounts.size());
+  for (int c = 0; c < static_cast<int>(piece.size()); ++c)
+    if (closedPiece[c] > 0 && piece[c] == 0 && closedCounts[closedPiece[c]] >= SmallestHole)
+      outsideBefore[closedPiece[c]].push_back(c);
+  for (std::size_t bay = 1; bay < closedCounts.size(); ++bay)
   {
-    if (closedCounts[bay] < SmallestHole)
+    // Some cells a hole before the closing too: kept or filled as a hole.
+    if (outsideBefore[bay].empty() ||
+        static_cast<int>(outsideBefore[bay].size()) < closedCounts[bay])
       continue;
-    queue.clear();
-    for (int c = 0; c < static_cast<int>(piece.size()); ++c)
-      if (closedPiece[c] == bay && piece[c] == 0)
-        queue.push_back(c);
-    if (static_cast<int>(queue.size()) < closedCounts[bay])
-      continue; // a hole before the closing too: kept or filled as a hole
-    for (int c : queue)
-    {
-      from[c] = -1;
+    for (int c : outsideBefore[bay])
       empty[c] = 1;
-    }
-    // Breadth first over the raster's empty cells to the outside.
-    for (std::size_t k = 0; k < queue.size(); ++k)
-    {
-      const int c = queue[k];
-      if (closedPiece[c] == 0)
-      {
-        for (int g = c; g >= 0; g = from[g])
-          empty[g] = 1;
-        break;
-      }
-      const int i = c % raster.width;
-      const int j = c / raster.width;
-      const int next[4][2] = { { i + 1, j }, { i - 1, j }, { i, j + 1 }, { i, j - 1 } };
-      for (const auto& [x, y] : next)
-      {
-        if (x < 0 || y < 0 || x >= raster.width || y >= raster.height)
-          continue;
-        const int n = static_cast<int>(raster.at(x, y));
-        if (piece[n] == 0 && from[n] == -2)
-        {
-          from[n] = c;
-          queue.push_back(n);
-        }
-      }
-    }
-    for (int c : queue)
-      from[c] = -2;
+    for (int c : shortestCellChannel(
+           raster,
+           outsideBefore[bay],
+           [&](int n) { return piece[n] == 0; },
+           [&](int n) { return closedPiece[n] == 0; }))
+      empty[c] = 1;
   }
 }
 
@@ -862,15 +861,27 @@ Vector2 nearestOnSegment(const Vector2& a, const Vector2& b, const Vector2& q)
   return a + t * d;
 }
 
+/// The point of the closed polygon nearest to q (q itself for none).
+Vector2 nearestOnLoop(const std::vector<Vector2>& loop, const Vector2& q)
+{
+  Vector2 nearest = q;
+  double best = Infinity;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+  {
+    const Vector2 p = nearestOnSegment(loop[i], loop[(i + 1) % loop.size()], q);
+    if ((p - q).squaredNorm() < best)
+    {
+      best = (p - q).squaredNorm();
+      nearest = p;
+    }
+  }
+  return nearest;
+}
+
+/// How far q is from the closed polygon (infinitely for none).
 double distanceToPolygon(const std::vector<Vector2>& polygon, const Vector2& q)
 {
-  double best = Infinity;
-  for (std::size_t i = 0; i < polygon.size(); ++i)
-  {
-    best = std::min(
-      best, (q - nearestOnSegment(polygon[i], polygon[(i + 1) % polygon.size()], q)).norm());
-  }
-  return best;
+  return polygon.empty() ? Infinity : (q - nearestOnLoop(polygon, q)).norm();
 }
 
 /// Points of a triangular lattice of spacing h inside the outline and out
@@ -1342,19 +1353,6 @@ bool crossingBorderSegments(const std::vector<Loop>& borders, std::array<BorderS
         }
     }
   return false;
-}
-
-/// The point of the closed polygon nearest to q.
-Vector2 nearestOnLoop(const Loop& loop, const Vector2& q)
-{
-  Vector2 nearest = loop.front();
-  for (std::size_t i = 0; i < loop.size(); ++i)
-  {
-    const Vector2 p = nearestOnSegment(loop[i], loop[(i + 1) % loop.size()], q);
-    if ((p - q).squaredNorm() < (nearest - q).squaredNorm())
-      nearest = p;
-  }
-  return nearest;
 }
 
 /// Borders that cross, untangled (issue 14: "its outline crosses itself"
