@@ -870,17 +870,14 @@ void CorotationalHexFem::prepareSystem()
   TopologyChanged = false;
   s.bridging = hadFactor && Settings.bridgeTopologyChanges && refreshesInBackground() &&
                s.dofCount <= BridgeUnknownLimit && !s.factorDofOfNode.empty();
-  if (s.bridging)
+  if (!s.bridging || !prepareBridge())
   {
-    prepareBridge();
-  }
-  else
-  {
+    s.bridging = false;
     s.touchedNodes.clear(); // the next factor is of this pattern
   }
 }
 
-void CorotationalHexFem::prepareBridge()
+bool CorotationalHexFem::prepareBridge()
 {
   LinearSystem& s = *System;
   const int freeNodes = s.dofCount / 3;
@@ -928,6 +925,12 @@ void CorotationalHexFem::prepareBridge()
       }
     }
   }
+  // A change that touches much of the system is cheaper factorized at once
+  // (BridgeTouchedFraction).
+  if (static_cast<double>(s.touchedDofs.size()) > BridgeTouchedFraction * s.dofCount)
+  {
+    return false;
+  }
   // One pass over the pattern: the touched block's upper entries, and the
   // touched DOFs' whole columns (an upper entry (row, column) serves column
   // `column` and, mirrored, column `row`).
@@ -959,6 +962,7 @@ void CorotationalHexFem::prepareBridge()
     s.touchedSolver.analyzePattern(s.touchedMatrix);
   }
   s.touchedFactorStep = -1;
+  return true;
 }
 
 void CorotationalHexFem::factorIsCurrent()

@@ -98,6 +98,18 @@ constexpr int AutomaticDirectLimit = 28000;
 /// higher price per step.
 constexpr int BridgeUnknownLimit = 2000;
 
+/// Fraction of the unknowns above which a topology change is not bridged:
+/// the touched block's exact solve then costs about what the whole
+/// factorization does, at every iteration of every bridged step. Measured
+/// (issue 20 item 6, callgrind, the meniscus of 324-564 unknowns cut after
+/// 20 steps, the eight steps after the cut, instructions): touched 18 %
+/// bridged 13.6 M (first step 4.2 M) against 11.1 M factorized in the
+/// first step (5.8 M); 42 %: 20.2 M (6.6 M) against 11.9 M (6.2 M); 65 %:
+/// 53.7 M against 14.0 M; 86 % (a cut across): 110 M (32 M, then 24 M a
+/// step) against 17.0 M (8.2 M). Only a small touched block lowers the
+/// first step (a punch bite touches 11-29 %).
+constexpr double BridgeTouchedFraction = 0.25;
+
 /// Fill-reducing ordering of the CHOLMOD factor.
 enum class FactorOrdering
 {
@@ -194,7 +206,8 @@ struct CorotationalHexFemSettings
   /// after a cut then factorizes nothing; it does only if that solve needs
   /// more than staleFactorIterationCap iterations. Only with a background
   /// refresh (StaleFactorConjugateGradient at any size by default) and up
-  /// to BridgeUnknownLimit unknowns.
+  /// to BridgeUnknownLimit unknowns, for changes that touch at most
+  /// BridgeTouchedFraction of them.
   bool bridgeTopologyChanges = true;
   /// The hierarchy of MultigridConjugateGradient (checked like the rest).
   SmoothedAggregationSettings multigrid;
@@ -462,8 +475,9 @@ private:
   void applyStaleFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z);
   /// After a topology change: maps the new numbering to the factor's and
   /// sets up the exact solve on the touched nodes (see
-  /// CorotationalHexFemSettings::bridgeTopologyChanges).
-  void prepareBridge();
+  /// CorotationalHexFemSettings::bridgeTopologyChanges); false if the
+  /// change touches too much of the system to bridge (BridgeTouchedFraction).
+  bool prepareBridge();
   /// z = P^-1 r across a topology change: touched-node solve, the old
   /// factor on the glued residual, touched-node solve again.
   void applyBridgedFactor(const Eigen::VectorXd& r, Eigen::VectorXd& z);

@@ -482,6 +482,26 @@ TEST(SolverAtScale, TheOldFactorBridgesACutUntilTheNewOneLands)
   EXPECT_LT(largestDifference(prompt.positions, exact), 1e-6 * moved);
 }
 
+TEST(SolverAtScale, ACutTouchingMostOfTheSystemIsFactorizedAtOnce)
+{
+  // Beyond BridgeTouchedFraction the touched block's exact solve costs
+  // about a whole factorization at every bridged iteration: the step after
+  // the cut factorizes instead, and moves as refactorizing every step.
+  // A 4 x 3 x 2 block cut through its whole width: half its free nodes
+  // belong to the copied hexahedra.
+  const BlockCut across{ 4, 3, 2, 2.0, 100.0, true, false };
+  const CutBlockRun bridged =
+    stepCutBlock(withSolver(LinearSolverKind::StaleFactorConjugateGradient), across);
+  EXPECT_GE(bridged.factorizationsAfterCut, 1);
+  const std::vector<Vector3> exact =
+    stepCutBlock(withSolver(LinearSolverKind::Cholmod), across).positions;
+  const HexahedralMesh mesh = fixedBlock(4, 3, 2);
+  const double moved = largestDisplacement(
+    mesh, std::vector<Vector3>(exact.begin(), exact.begin() + mesh.nodeCount()));
+  ASSERT_GT(moved, 0.0);
+  EXPECT_LT(largestDifference(bridged.positions, exact), 1e-6 * moved);
+}
+
 TEST(SolverAtScale, ANodeCopyIsItsSourcesTwinAndACutOfCopiesMovesLikeOneOfNewNodes)
 {
   // A copy has its source's rest and current position, velocity and fixed
