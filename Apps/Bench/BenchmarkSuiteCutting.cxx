@@ -70,7 +70,7 @@ void cutAndReport(const std::string& name,
   int repetitions,
   BenchmarkReporter& reporter)
 {
-  std::vector<double> stages[5];
+  std::vector<double> stages[6];
   std::size_t touched = 0;
   for (int r = 0; r < repetitions; ++r)
   {
@@ -79,11 +79,21 @@ void cutAndReport(const std::string& name,
     TissueCutter cutter(collision, simulation, &fem);
     const auto report = cutter.cut(scalpelAcross(boundingBoxOf(collision.positions), 0.53));
     touched = report.simulation.touchedHexahedra.size();
-    const auto stepStart = std::chrono::steady_clock::now();
-    fem.step();
-    stages[4].push_back(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - stepStart)
-        .count());
+    // The first step, and the first four: a factor bridged across the cut
+    // costs in each step until the new one lands.
+    double afterCut = 0.0;
+    for (int k = 0; k < 4; ++k)
+    {
+      const auto stepStart = std::chrono::steady_clock::now();
+      fem.step();
+      const double step =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - stepStart)
+          .count();
+      if (k == 0)
+        stages[4].push_back(step);
+      afterCut += step;
+    }
+    stages[5].push_back(afterCut);
     stages[0].push_back(report.collisionMilliseconds);
     stages[1].push_back(report.simulationMilliseconds);
     stages[2].push_back(report.embeddingMilliseconds);
@@ -97,6 +107,7 @@ void cutAndReport(const std::string& name,
   reporter.report(what, "collision-simulation embedding update", median(stages[2]), "ms");
   reporter.report(what, "collision and simulation cut, total", median(stages[3]), "ms");
   reporter.report(what, "first solver step after the cut", median(stages[4]), "ms");
+  reporter.report(what, "first four solver steps after the cut, summed", median(stages[5]), "ms");
 }
 
 /// Table 5-4: a cut with the visual mesh, by stage.
