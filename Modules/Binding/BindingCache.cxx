@@ -274,6 +274,12 @@ std::uint64_t bindingInputChecksum(const TriangleMesh& visual,
   w.string(settings.radiusArrayName);
   w.pod(settings.insideTolerance);
   w.pod(settings.thinnessFactor);
+  // The default method adds nothing: the caches written before it keep
+  // their checksums.
+  if (settings.rimPaths != RimPathMethod::Automatic)
+  {
+    w.pod(static_cast<std::int32_t>(settings.rimPaths));
+  }
   sum.add(w.Bytes.data(), w.Bytes.size());
   return sum.value();
 }

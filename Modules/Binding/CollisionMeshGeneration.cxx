@@ -1660,6 +1660,65 @@ ProjectedSurface projectionAlongThickness(const TriangleMesh& visual)
   return ProjectedSurface(visual, centre, u, n.cross(u), n);
 }
 
+/// The share of a hole's inside (a lattice of about 400 points, or the
+/// points beside its edges when none fits) where the axis line meets no
+/// tissue.
+double seeThroughFraction(const ProjectedSurface& surface, const Loop& hole, double extent)
+{
+  Loop counterClockwise = hole;
+  if (signedArea(counterClockwise) < 0.0)
+  {
+    std::reverse(counterClockwise.begin(), counterClockwise.end());
+  }
+  const double spacing = std::sqrt(std::abs(signedArea(hole)) / 400.0);
+  const std::vector<Vector2> lattice =
+    spacing > 0.0 ? latticeInside({ counterClockwise }, spacing, 0.0) : std::vector<Vector2>();
+  if (lattice.empty())
+  {
+    return enclosesNoTissue(surface, hole, 1e-3 * extent) ? 1.0 : 0.0;
+  }
+  double middle = 0.0;
+  const auto empty = std::count_if(lattice.begin(),
+    lattice.end(),
+    [&](const Vector2& q) { return halfThicknessAt(surface, q, middle) < 0.0; });
+  return static_cast<double>(empty) / static_cast<double>(lattice.size());
+}
+
+/// A hole of the outline is a tunnel through the tissue, so the visual
+/// surface has at least as many tunnels (its genus) as the outline has
+/// holes, or the collision mesh's two sides could not be told apart on it
+/// (a hole whose rim closes on itself, a cap where a segmentation's
+/// tunnel was closed: the rim paths around it would leave a side in two
+/// pieces). Beyond the genus, the holes seen through least are filled.
+void keepHolesTheSurfaceHas(const TriangleMesh& visual,
+  const ProjectedSurface& surface,
+  double extent,
+  std::vector<Loop>& loops)
+{
+  if (loops.size() <= 1)
+  {
+    return;
+  }
+  const int genus = TriangleMeshAdjacency(visual).closedSurfaceGenus();
+  if (static_cast<int>(loops.size()) - 1 <= genus)
+  {
+    return;
+  }
+  std::vector<std::pair<double, std::size_t>> seen;
+  for (std::size_t k = 1; k < loops.size(); ++k)
+  {
+    seen.emplace_back(seeThroughFraction(surface, loops[k], extent), k);
+  }
+  std::stable_sort(
+    seen.begin(), seen.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<Loop> kept{ std::move(loops.front()) };
+  for (std::size_t i = 0; i < static_cast<std::size_t>(std::max(genus, 0)); ++i)
+  {
+    kept.push_back(std::move(loops[seen[i].second]));
+  }
+  loops = std::move(kept);
+}
+
 /// The outline and holes seen along the axis: from the silhouette edges,
 /// or from the shadow's raster where the silhouette's outline or a hole
 /// crosses itself (a rough surface; a tear's lips overlapping).
@@ -1678,6 +1737,7 @@ std::vector<Loop> outlineAlongAxis(const TriangleMesh& visual,
   {
     throw InvalidInputError(nameOf(visual) + ": no outline seen along the thickness axis");
   }
+  keepHolesTheSurfaceHas(visual, surface, extent, loops);
   return loops;
 }
 

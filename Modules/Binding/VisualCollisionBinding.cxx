@@ -1,6 +1,8 @@
 #include "VisualCollisionBinding.h"
 
+#include "EquatorRimPaths.h"
 #include "GeodesicPaths.h"
+#include "MeshPieces.h"
 #include "MeshQueries.h"
 #include "MeshValidation.h"
 #include "PathRemeshing.h"
@@ -1285,33 +1287,12 @@ std::vector<int> piecesBetweenRimPaths(const TriangleMesh& mesh,
       }
     }
   }
-  std::vector<int> piece(mesh.triangleCount(), -1);
-  pieces = 0;
-  std::vector<int> stack;
-  for (std::size_t seed = 0; seed < mesh.triangleCount(); ++seed)
-  {
-    if (piece[seed] >= 0)
-    {
-      continue;
-    }
-    piece[seed] = pieces;
-    stack.assign(1, static_cast<int>(seed));
-    while (!stack.empty())
-    {
-      const int t = stack.back();
-      stack.pop_back();
-      for (int k = 0; k < 3; ++k)
-      {
-        const int next = adjacency.neighbourAcross(t, k);
-        if (next >= 0 && piece[next] < 0 && !barrier[adjacency.triangleEdges(t)[k]])
-        {
-          piece[next] = pieces;
-          stack.push_back(next);
-        }
-      }
-    }
-    ++pieces;
-  }
+  std::vector<int> piece;
+  pieces = floodTrianglePieces(
+    adjacency,
+    mesh.triangleCount(),
+    [&](int t, int k) { return !barrier[adjacency.triangleEdges(t)[k]]; },
+    piece);
   return piece;
 }
 
@@ -2360,6 +2341,202 @@ void remeshAlongAllPaths(VisualCollisionBinding& binding,
   }
 }
 
+/// Flood fill: path edges are barriers; each collision triangle and side
+/// is seeded beside its own paths. Then the visual vertices' parameters,
+/// mean value coordinates per region (the boundary fixed on the collision
+/// triangle, laid out in its own plane).
+void regionsAndParameters(VisualCollisionBinding& binding,
+  const TriangleMesh& collision,
+  const CollisionTopology& topology,
+  const BindingProgress& progress)
+{
+  report(progress, 0.8, "finding the regions of the collision triangles");
+  PathsOfEdges pathFor;
+  pathFor.topology = &topology;
+  pathFor.byEdge.assign(topology.edges.size(), { { -1, -1, -1 } });
+  for (std::size_t k = 0; k < binding.paths.size(); ++k)
+  {
+    pathFor.byEdge[binding.paths[k].collisionEdge][binding.paths[k].side + 1] = static_cast<int>(k);
+  }
+  const std::vector<std::vector<int>> regionTriangles =
+    floodRegions(binding, collision, topology, pathFor);
+  report(progress, 0.85, "assigning local parameters");
+  const std::vector<std::vector<double>> pathFractions = bindVisualVertices(binding);
+  parameteriseRegions(
+    binding, collision, topology, pathFor, regionTriangles, pathFractions, progress);
+}
+
+/// What the stages after the pairing share.
+struct BindingStages
+{
+  const TriangleMesh& collision;
+  const CollisionTopology& topology;
+  const VisualCollisionBindingSettings& settings;
+  const BindingProgress& progress;
+  std::vector<PathRequest> rimRequests;
+  std::vector<PathRequest> innerRequests;
+  double pathsDone; ///< paths in all, for progress
+};
+
+/// The equator (5.2.2): the rim paths inserted into the visual mesh, their
+/// detours, and whether rim points moved (the inner paths' ends follow).
+struct RimPaths
+{
+  RemeshedSurface rimmed;
+  std::vector<int> detours;
+  bool rimPointsMoved = false;
+};
+
+/// The rim paths as geodesics between the rim points (the thesis's), crossings
+/// found again, dead ends where two of them share a run trimmed.
+RimPaths geodesicRimPaths(VisualCollisionBinding& binding,
+  const TriangleMesh& start,
+  const TriangleMeshAdjacency& startAdjacency,
+  const BindingStages& stages)
+{
+  RimPaths rim;
+  const double rimDone = 0.1 + 0.6 * stages.rimRequests.size() / stages.pathsDone;
+  const GeodesicPathFinder finder(start, startAdjacency);
+  std::vector<SurfacePath> rimPaths = computePaths(finder,
+    stages.rimRequests,
+    nullptr,
+    stages.settings.parallel,
+    stages.progress,
+    0.1,
+    rimDone,
+    rim.detours);
+  report(stages.progress, rimDone, "re-meshing along the rim paths");
+  const std::vector<char> everywhere(start.triangleCount(), 1);
+  std::vector<int> uncrossingDetours;
+  rim.rimmed = insertUncrossedPaths(
+    start, startAdjacency, rimPaths, [&](int) { return &everywhere; }, uncrossingDetours);
+  for (std::size_t k = 0; k < rim.detours.size(); ++k)
+  {
+    rim.detours[k] += uncrossingDetours[k];
+  }
+  rim.rimPointsMoved =
+    trimRimDeadEnds(
+      rim.rimmed.pathVertices, stages.rimRequests, stages.topology, binding.pairedVisualVertices) >
+    0;
+  return rim;
+}
+
+/// Whether the labelled equator can stand in: a collision mesh with a
+/// border and no junction (its halves are the positive and negative ones).
+bool equatorMayServe(const CollisionTopology& topology, const std::vector<PathRequest>& rimRequests)
+{
+  return !rimRequests.empty() && std::none_of(topology.sides.junctionVertex.begin(),
+                                   topology.sides.junctionVertex.end(),
+                                   [](char junction) { return junction != 0; });
+}
+
+/// The rim paths along the border between the visual triangles labelled by
+/// the side of the collision mid-surface they lie on (EquatorRimPaths.h):
+/// the rim points move onto it. The arcs are no shortest paths: each
+/// counts its inner vertices as detours.
+RimPaths labelledRimPaths(VisualCollisionBinding& binding,
+  const TriangleMesh& start,
+  const TriangleMeshAdjacency& startAdjacency,
+  const BindingStages& stages)
+{
+  EquatorInput input;
+  input.visual = &start;
+  input.adjacency = &startAdjacency;
+  input.collision = &stages.collision;
+  input.collisionNormals = &stages.topology.vertexNormals;
+  input.rimPoints.assign(stages.collision.vertexCount(), -1);
+  for (const PathRequest& r : stages.rimRequests)
+  {
+    const auto& edge = stages.topology.edges[r.edge];
+    input.rimEdges.push_back(edge);
+    input.rimPoints[edge[0]] = r.source;
+    input.rimPoints[edge[1]] = r.target;
+  }
+  for (std::size_t c = 0; c < stages.collision.vertexCount(); ++c)
+  {
+    for (int slot = 0; slot < 2 && !stages.topology.borderVertex[c]; ++slot)
+    {
+      const int v = binding.pairedVisualVertices[c][slot];
+      if (v >= 0)
+      {
+        input.halfVotes.emplace_back(v, slot == 0 ? 1 : -1);
+      }
+    }
+  }
+  const EquatorRimPaths equator = equatorRimPaths(input);
+  for (std::size_t c = 0; c < equator.rimPoints.size(); ++c)
+  {
+    if (equator.rimPoints[c] >= 0)
+    {
+      binding.pairedVisualVertices[c] = { { equator.rimPoints[c], equator.rimPoints[c] } };
+    }
+  }
+  std::vector<SurfacePath> paths;
+  RimPaths rim;
+  for (const std::vector<int>& arc : equator.paths)
+  {
+    SurfacePath& path = paths.emplace_back();
+    for (int v : arc)
+    {
+      path.points.push_back(SurfacePoint::atVertex(v));
+    }
+    rim.detours.push_back(static_cast<int>(arc.size()) - 2);
+  }
+  rim.rimmed = insertPaths(start, paths);
+  rim.rimPointsMoved = true;
+  return rim;
+}
+
+/// 5.2.2-5.2.3 after the rim paths: the halves they bound, the inner paths
+/// on them, the re-meshing along all paths, the regions and their
+/// parameters.
+void bindAlongRimPaths(VisualCollisionBinding& binding, RimPaths& rim, BindingStages& stages)
+{
+  const TriangleMesh& collision = stages.collision;
+  const CollisionTopology& topology = stages.topology;
+  const RemeshedSurface& rimmed = rim.rimmed;
+  const TriangleMeshAdjacency rimmedAdjacency(rimmed.mesh);
+  const SurfaceHalves halves =
+    surfaceHalves(rimmed.mesh, rimmedAdjacency, rimmed.pathVertices, collision, binding, topology);
+  const bool repaired =
+    repairMisplacedPairings(binding, rimmed, rimmedAdjacency, halves, collision, topology);
+  std::vector<PathRequest> innerRequests = stages.innerRequests;
+  if (rim.rimPointsMoved || repaired)
+  {
+    for (PathRequest& r : innerRequests)
+    {
+      setRequestEnds(binding, topology, r);
+    }
+  }
+  const SideRegions regions = sideRegions(rimmed, rimmedAdjacency, halves.half);
+  std::vector<SurfacePath> innerPaths;
+  std::vector<int> innerDetours;
+  {
+    const GeodesicPathFinder finder(rimmed.mesh, rimmedAdjacency);
+    innerPaths = computePaths(finder,
+      innerRequests,
+      &regions,
+      stages.settings.parallel,
+      stages.progress,
+      0.1 + 0.6 * stages.rimRequests.size() / stages.pathsDone,
+      0.7,
+      innerDetours);
+  }
+
+  // 5.2.3 Re-meshing along the inner paths.
+  report(stages.progress, 0.7, "re-meshing the visual mesh along the paths");
+  remeshAlongAllPaths(binding,
+    rimmed,
+    rimmedAdjacency,
+    regions,
+    stages.rimRequests,
+    innerRequests,
+    std::move(innerPaths),
+    rim.detours,
+    innerDetours);
+  regionsAndParameters(binding, collision, topology, stages.progress);
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -2419,94 +2596,43 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   // rim, and an inner edge joining two border vertices (a corner of a grid)
   // gets two distinct paths between the same two rim vertices.
   report(progress, 0.1, "computing geodesic paths");
-  std::vector<PathRequest> rimRequests;
-  std::vector<PathRequest> innerRequests;
-  collectPathRequests(binding, topology, rimRequests, innerRequests);
-  const double pathsDone = static_cast<double>(rimRequests.size() + innerRequests.size());
-  RemeshedSurface rimmed;
-  std::vector<int> rimDetours;
+  BindingStages stages{ collision, topology, settings, progress, {}, {}, 0.0 };
+  collectPathRequests(binding, topology, stages.rimRequests, stages.innerRequests);
+  stages.pathsDone = static_cast<double>(stages.rimRequests.size() + stages.innerRequests.size());
+  const bool labelledOnly = settings.rimPaths == RimPathMethod::Labelled;
+  if (labelledOnly && !equatorMayServe(topology, stages.rimRequests))
   {
-    const GeodesicPathFinder finder(start, startAdjacency);
-    std::vector<SurfacePath> rimPaths = computePaths(finder,
-      rimRequests,
-      nullptr,
-      settings.parallel,
-      progress,
-      0.1,
-      0.1 + 0.6 * rimRequests.size() / pathsDone,
-      rimDetours);
-    report(progress, 0.1 + 0.6 * rimRequests.size() / pathsDone, "re-meshing along the rim paths");
-    const std::vector<char> everywhere(start.triangleCount(), 1);
-    std::vector<int> uncrossingDetours;
-    rimmed = insertUncrossedPaths(
-      start, startAdjacency, rimPaths, [&](int) { return &everywhere; }, uncrossingDetours);
-    for (std::size_t k = 0; k < rimDetours.size(); ++k)
+    throw InvalidInputError("collision mesh '" + collision.name +
+                            "': the labelled equator needs a border and no junction");
+  }
+  const VisualCollisionBinding afterPairing = binding;
+  try
+  {
+    RimPaths rim = labelledOnly ? labelledRimPaths(binding, start, startAdjacency, stages)
+                                : geodesicRimPaths(binding, start, startAdjacency, stages);
+    bindAlongRimPaths(binding, rim, stages);
+  }
+  catch (const InvalidInputError&)
+  {
+    // A rough rim can defeat the geodesic equator: the labelled one is
+    // tried before the first error is reported.
+    if (settings.rimPaths != RimPathMethod::Automatic ||
+        !equatorMayServe(topology, stages.rimRequests))
     {
-      rimDetours[k] += uncrossingDetours[k];
+      throw;
+    }
+    const std::exception_ptr first = std::current_exception();
+    try
+    {
+      binding = afterPairing;
+      RimPaths rim = labelledRimPaths(binding, start, startAdjacency, stages);
+      bindAlongRimPaths(binding, rim, stages);
+    }
+    catch (const InvalidInputError&)
+    {
+      std::rethrow_exception(first);
     }
   }
-  const bool trimmed =
-    trimRimDeadEnds(rimmed.pathVertices, rimRequests, topology, binding.pairedVisualVertices) > 0;
-  const TriangleMeshAdjacency rimmedAdjacency(rimmed.mesh);
-  const SurfaceHalves halves =
-    surfaceHalves(rimmed.mesh, rimmedAdjacency, rimmed.pathVertices, collision, binding, topology);
-  const std::vector<std::int8_t>& half = halves.half;
-  const bool repaired =
-    repairMisplacedPairings(binding, rimmed, rimmedAdjacency, halves, collision, topology);
-  if (trimmed || repaired)
-  {
-    for (PathRequest& r : innerRequests)
-    {
-      setRequestEnds(binding, topology, r);
-    }
-  }
-  const SideRegions regions = sideRegions(rimmed, rimmedAdjacency, half);
-  std::vector<SurfacePath> innerPaths;
-  std::vector<int> innerDetours;
-  {
-    const GeodesicPathFinder finder(rimmed.mesh, rimmedAdjacency);
-    innerPaths = computePaths(finder,
-      innerRequests,
-      &regions,
-      settings.parallel,
-      progress,
-      0.1 + 0.6 * rimRequests.size() / pathsDone,
-      0.7,
-      innerDetours);
-  }
-
-  // 5.2.3 Re-meshing along the inner paths.
-  report(progress, 0.7, "re-meshing the visual mesh along the paths");
-  remeshAlongAllPaths(binding,
-    rimmed,
-    rimmedAdjacency,
-    regions,
-    rimRequests,
-    innerRequests,
-    std::move(innerPaths),
-    rimDetours,
-    innerDetours);
-
-  // Flood fill: path edges are barriers; each collision triangle and side
-  // is seeded beside its own paths.
-  report(progress, 0.8, "finding the regions of the collision triangles");
-  PathsOfEdges pathFor;
-  pathFor.topology = &topology;
-  pathFor.byEdge.assign(topology.edges.size(), { { -1, -1, -1 } });
-  for (std::size_t k = 0; k < binding.paths.size(); ++k)
-  {
-    pathFor.byEdge[binding.paths[k].collisionEdge][binding.paths[k].side + 1] = static_cast<int>(k);
-  }
-  const std::vector<std::vector<int>> regionTriangles =
-    floodRegions(binding, collision, topology, pathFor);
-
-  report(progress, 0.85, "assigning local parameters");
-  const std::vector<std::vector<double>> pathFractions = bindVisualVertices(binding);
-
-  // Mean value coordinates per region, the boundary fixed on the collision
-  // triangle (laid out in its own plane).
-  parameteriseRegions(
-    binding, collision, topology, pathFor, regionTriangles, pathFractions, progress);
   report(progress, 1.0, "done");
   return binding;
 }

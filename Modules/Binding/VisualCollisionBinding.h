@@ -84,6 +84,21 @@ struct BindingPath
   int detours = 0;
 };
 
+/// How the rim paths (the equator between the positive and negative halves
+/// of the visual surface, 5.2.2) are found.
+enum class RimPathMethod
+{
+  /// Geodesics between the rim points (the thesis's); where a rough rim
+  /// defeats them, the labelled equator before the first error is reported.
+  Automatic,
+  /// Geodesics between the rim points only.
+  Geodesic,
+  /// The border between the visual triangles labelled by the side of the
+  /// collision mid-surface they lie on; the rim points move onto it (no
+  /// junctions: a horizontal cleavage takes the geodesics).
+  Labelled
+};
+
 struct VisualCollisionBindingSettings
 {
   /// Name of the per-vertex radius array of the collision mesh.
@@ -100,6 +115,7 @@ struct VisualCollisionBindingSettings
   /// Computes the geodesic paths in parallel (the result does not depend on
   /// it).
   bool parallel = true;
+  RimPathMethod rimPaths = RimPathMethod::Automatic;
 };
 
 /// Progress: `fraction` in [0, 1] and what is being done; return false to

@@ -37,6 +37,41 @@ std::vector<std::vector<int>> edgeConnectedTriangles(const TriangleMesh& mesh,
   return groups;
 }
 
+int floodTrianglePieces(const TriangleMeshAdjacency& adjacency,
+  std::size_t triangleCount,
+  const std::function<bool(int triangle, int edge)>& joined,
+  std::vector<int>& piece)
+{
+  piece.assign(triangleCount, -1);
+  int pieces = 0;
+  std::vector<int> stack;
+  for (std::size_t seed = 0; seed < triangleCount; ++seed)
+  {
+    if (piece[seed] >= 0)
+    {
+      continue;
+    }
+    piece[seed] = pieces;
+    stack.assign(1, static_cast<int>(seed));
+    while (!stack.empty())
+    {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k)
+      {
+        const int next = adjacency.neighbourAcross(t, k);
+        if (next >= 0 && piece[next] < 0 && joined(t, k))
+        {
+          piece[next] = pieces;
+          stack.push_back(next);
+        }
+      }
+    }
+    ++pieces;
+  }
+  return pieces;
+}
+
 namespace
 {
 

@@ -15,6 +15,7 @@
 #include "TriangleMesh.h"
 #include "TriangleMeshAdjacency.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,15 @@ struct MeshPiece
 /// increasing order, pieces in the order of their first triangle.
 THINTISSUECORE_EXPORT std::vector<std::vector<int>> edgeConnectedTriangles(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency);
+
+/// Per triangle its piece, flooded across the edges where `joined(t, k)`
+/// (triangle t and its neighbour across its edge k belong together; asked
+/// of manifold edges only), pieces numbered in the order of their first
+/// triangle. Returns the number of pieces.
+THINTISSUECORE_EXPORT int floodTrianglePieces(const TriangleMeshAdjacency& adjacency,
+  std::size_t triangleCount,
+  const std::function<bool(int triangle, int edge)>& joined,
+  std::vector<int>& piece);
 
 /// How many pieces `mesh` has (without copying them).
 THINTISSUECORE_EXPORT std::size_t countPieces(const TriangleMesh& mesh);

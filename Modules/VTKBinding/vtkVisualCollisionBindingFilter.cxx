@@ -187,6 +187,7 @@ int vtkVisualCollisionBindingFilter::RequestData(vtkInformation*,
   settings.insideTolerance = this->InsideTolerance;
   settings.thinnessFactor = this->ThinnessFactor;
   settings.parallel = this->Parallel;
+  settings.rimPaths = static_cast<thintissue::RimPathMethod>(this->RimPathMethod);
   // The kernel reports progress from this thread (between blocks of
   // parallel work), so the VTK events stay on the pipeline's thread.
   const thintissue::BindingProgress progress = [this](double fraction, const char* stage)
@@ -264,6 +265,7 @@ void vtkVisualCollisionBindingFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "InsideTolerance: " << this->InsideTolerance << "\n"
      << indent << "ThinnessFactor: " << this->ThinnessFactor << "\n"
      << indent << "Parallel: " << (this->Parallel ? "On" : "Off") << "\n"
+     << indent << "RimPathMethod: " << this->RimPathMethod << "\n"
      << indent << "CacheFileName: " << (this->CacheFileName ? this->CacheFileName : "(none)")
      << "\n"
      << indent << "CacheWasRebuilt: " << (this->CacheWasRebuilt ? "true" : "false") << "\n"

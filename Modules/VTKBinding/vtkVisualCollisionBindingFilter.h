@@ -107,6 +107,26 @@ public:
   ///@}
 
   ///@{
+  /// How the rim paths (the equator between the visual surface's positive
+  /// and negative halves) are found: RIM_PATHS_AUTOMATIC (the default:
+  /// geodesics between the rim points, the labelled equator where a rough
+  /// rim defeats them), RIM_PATHS_GEODESIC, or RIM_PATHS_LABELLED (the
+  /// border between the triangles on either side of the collision
+  /// mid-surface; no horizontal cleavage).
+  enum RimPathMethods
+  {
+    RIM_PATHS_AUTOMATIC = 0,
+    RIM_PATHS_GEODESIC = 1,
+    RIM_PATHS_LABELLED = 2
+  };
+  vtkSetClampMacro(RimPathMethod, int, RIM_PATHS_AUTOMATIC, RIM_PATHS_LABELLED);
+  vtkGetMacro(RimPathMethod, int);
+  void SetRimPathMethodToAutomatic() { this->SetRimPathMethod(RIM_PATHS_AUTOMATIC); }
+  void SetRimPathMethodToGeodesic() { this->SetRimPathMethod(RIM_PATHS_GEODESIC); }
+  void SetRimPathMethodToLabelled() { this->SetRimPathMethod(RIM_PATHS_LABELLED); }
+  ///@}
+
+  ///@{
   /// Binding cache file; none (null or empty, the default) builds the
   /// binding at every update.
   vtkSetStringMacro(CacheFileName);
@@ -137,6 +157,7 @@ protected:
   double InsideTolerance = 1e-3;
   double ThinnessFactor = 4.0;
   bool Parallel = true;
+  int RimPathMethod = RIM_PATHS_AUTOMATIC;
   char* CacheFileName = nullptr;
   bool CacheWasRebuilt = false;
   std::string LastCacheMessage;

@@ -95,6 +95,76 @@ TEST(VisualCollisionBinding, TornMenisciAreBoundExactly)
   }
 }
 
+// The labelled equator (RimPathMethod::Labelled, the fallback for rough
+// rims): the rim paths run along the border between the visual triangles
+// on the positive and negative sides of the collision mid-surface, and the
+// rim points move onto it. On the thesis's sheet and on the intact and
+// longitudinally torn menisci the binding keeps every invariant, each rim
+// point has triangles on both halves, and every rim path edge has one
+// triangle on each. A horizontal cleavage (three halves) is refused by
+// name.
+TEST(VisualCollisionBinding, TheLabelledEquatorBindsTheSheetAndTheMenisci)
+{
+  VisualCollisionBindingSettings settings;
+  settings.rimPaths = RimPathMethod::Labelled;
+  MeniscusParameters torn;
+  torn.tear = defaultMeniscusTear(MeniscusTearType::Longitudinal);
+  const MeniscusModel longitudinal = makeMeniscus(torn);
+  const std::vector<std::pair<const TriangleMesh*, const TriangleMesh*>> cases{
+    { &sheet().visual, &sheet().collision },
+    { &meniscus().visual, &meniscus().collision },
+    { &longitudinal.visual, &longitudinal.collision }
+  };
+  for (const auto& [visual, collision] : cases)
+  {
+    SCOPED_TRACE(visual->name);
+    const VisualCollisionBinding binding = bindVisualToCollision(*visual, *collision, settings);
+    checkBinding(*visual, *collision, binding);
+    const TriangleMeshAdjacency adjacency(binding.visual);
+    std::map<int, int> trianglesOfEdge;
+    for (const Triangle& t : binding.collisionTriangles)
+      for (int k = 0; k < 3; ++k)
+        ++trianglesOfEdge[binding.collisionEdgeIndex(t[k], t[(k + 1) % 3])];
+    int rimPaths = 0;
+    for (const BindingPath& path : binding.paths)
+    {
+      if (trianglesOfEdge[path.collisionEdge] != 1)
+        continue;
+      ++rimPaths;
+      for (std::size_t i = 1; i < path.visualVertices.size(); ++i)
+      {
+        const int e = adjacency.findEdge(path.visualVertices[i - 1], path.visualVertices[i]);
+        ASSERT_GE(e, 0);
+        const int* t = adjacency.edgeTrianglesBegin(e);
+        EXPECT_NE(thintissue::testing::visualTriangleHalf(binding, t[0]),
+          thintissue::testing::visualTriangleHalf(binding, t[1]))
+          << "rim path of collision edge " << path.collisionEdge << " at visual edge " << e;
+      }
+      const int rimPoint = path.visualVertices.front();
+      std::set<SurfaceHalf> halves;
+      for (const int* t = adjacency.vertexTrianglesBegin(rimPoint);
+           t != adjacency.vertexTrianglesEnd(rimPoint);
+           ++t)
+        halves.insert(thintissue::testing::visualTriangleHalf(binding, *t));
+      EXPECT_EQ(halves.size(), 2u) << "rim point " << rimPoint;
+    }
+    EXPECT_GT(rimPaths, 0);
+  }
+  MeniscusParameters cleavage;
+  cleavage.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
+  const MeniscusModel cleaved = makeMeniscus(cleavage);
+  try
+  {
+    bindVisualToCollision(cleaved.visual, cleaved.collision, settings);
+    ADD_FAILURE() << "a cleavage bound with the labelled equator";
+  }
+  catch (const InvalidInputError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("labelled equator"), std::string::npos)
+      << error.what();
+  }
+}
+
 // A horizontal cleavage: the collision mid-surface splits along a U into an
 // upper and a lower leaf, so its junction edges join three triangles (the
 // body and both leaves). Each junction edge gets three paths (top, bottom,

@@ -58,6 +58,24 @@ class BindingTest(unittest.TestCase):
         self.assertEqual(paths.GetCellData().GetArray("Side").GetNumberOfTuples(),
                          paths.GetNumberOfLines())
 
+    def test_labelled_rim_paths(self):
+        # The labelled equator binds the sheet too; the rim points move onto
+        # the border between its halves, so the paths differ from the
+        # geodesic ones, and the output is as complete.
+        labelled = thintissue.vtkVisualCollisionBindingFilter()
+        labelled.SetInputConnection(0, self.sheet.GetOutputPort(0))
+        labelled.SetCollisionConnection(self.sheet.GetOutputPort(1))
+        labelled.SetRimPathMethodToLabelled()
+        self.assertEqual(labelled.GetRimPathMethod(), labelled.RIM_PATHS_LABELLED)
+        labelled.Update()
+        self.assertEqual(labelled.GetLastErrorMessage(), "")
+        paths = labelled.GetOutputDataObject(1)
+        self.assertEqual(paths.GetNumberOfLines(),
+                         self.binding.GetOutputDataObject(1).GetNumberOfLines())
+        kinds = labelled.GetOutputDataObject(0).GetPointData().GetArray("BindingKind")
+        self.assertEqual(kinds.GetNumberOfTuples(),
+                         labelled.GetOutputDataObject(0).GetNumberOfPoints())
+
     def test_vtp_round_trip(self):
         visual = self.binding.GetOutputDataObject(0)
         with tempfile.TemporaryDirectory() as directory:

@@ -4,10 +4,9 @@
 // and seed, then prepared (collision mid-surface, hexahedra, binding) and
 // checked with the binding invariants; the menisci then pressed by a probe
 // (every step solved, no position NaN, the tissue pushed down). One ctest test per tissue model:
-// by default two cases each (about 25 s in all), every one must prepare
-// but one of the longitudinal tear's (its strips are narrower than the
-// lattice: open in issue 14); THINTISSUE_SWEEP_CASES=25 runs the issue's
-// 200 cases, every one required (measured rates in
+// by default two cases each (about 25 s in all), every one must prepare;
+// THINTISSUE_SWEEP_CASES=25 runs the issue's 200 cases, every one
+// required (fine 191 and coarse 181 prepare: open in issue 14; rates in
 // Documentation/Architecture.md); THINTISSUE_SWEEP_COARSE draws coarse
 // spacings instead (0.5-0.8 mm in-plane, 1.0-1.5 mm slices).
 #include "vtkSimulatedSegmentationFilter.h"
@@ -272,12 +271,6 @@ std::vector<unsigned> sweepSeeds()
   return seeds;
 }
 
-/// Failures the default run tolerates (none with THINTISSUE_SWEEP_CASES).
-int toleratedFailures(const std::string& tissue)
-{
-  return std::getenv("THINTISSUE_SWEEP_CASES") == nullptr && tissue == "LongitudinalTear" ? 1 : 0;
-}
-
 /// THINTISSUE_SWEEP_DUMP=DIR: a failing case's segmented surface is
 /// written there as binary PLY (TISSUE-SEED[-coarse].ply), to be prepared
 /// again with ThinTissuePrepare or looked at.
@@ -314,13 +307,9 @@ TEST_P(SegmentationSweep, PreparesAndBinds)
     const std::string failure = prepareAndCheck(mesh, isMeniscus(GetParam()));
     if (!failure.empty())
       dumpFailedCase(mesh, GetParam(), c);
-    if (toleratedFailures(GetParam()) == 0)
-      EXPECT_EQ(failure, "");
-    else if (!failure.empty())
-      std::cout << "tolerated: " << failure << "\n";
+    EXPECT_EQ(failure, "");
     failures += failure.empty() ? 0 : 1;
   }
-  EXPECT_LE(failures, toleratedFailures(GetParam()));
   std::cout << GetParam() << ": " << cases - failures << " of " << cases << " prepared\n";
 }
 
@@ -578,4 +567,85 @@ TEST(SegmentationSweep, CrossingBordersAreUntangled)
 {
   EXPECT_EQ(
     prepareAndCheck(segmented(tissueModel("LongitudinalTear"), sweepCase(1008, true)), true), "");
+}
+
+namespace
+{
+/// Border loops of a mesh: pieces of its border edges.
+int borderLoopCount(const TriangleMesh& mesh)
+{
+  const TriangleMeshAdjacency adjacency(mesh);
+  std::vector<int> parent(mesh.vertexCount());
+  for (std::size_t v = 0; v < parent.size(); ++v)
+    parent[v] = static_cast<int>(v);
+  auto root = [&](int v)
+  {
+    while (parent[v] != v)
+      v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::vector<char> onBorder(mesh.vertexCount(), 0);
+  for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
+  {
+    if (!adjacency.isBorderEdge(static_cast<int>(e)))
+      continue;
+    const auto& edge = adjacency.edge(static_cast<int>(e));
+    onBorder[edge[0]] = onBorder[edge[1]] = 1;
+    parent[root(edge[0])] = root(edge[1]);
+  }
+  int loops = 0;
+  for (std::size_t v = 0; v < parent.size(); ++v)
+    loops += onBorder[v] && root(static_cast<int>(v)) == static_cast<int>(v) ? 1 : 0;
+  return loops;
+}
+} // namespace
+
+// A segmentation's thin cartilage (fine, seed 1014) and meniscus (coarse,
+// seed 1014): the shadow along the axis showed holes (two, one) where the
+// visual surface, its tunnels closed, has none (genus 0). The collision
+// mesh ran around them, and rim paths around a hole with no tunnel leave
+// a side in two pieces ("vertices 13694 and 13713 are not connected").
+// The outline now keeps at most as many holes as the surface has tunnels
+// (those seen through most): the collision mesh spans the others, and
+// both prepare and bind.
+TEST(SegmentationSweep, HolesTheSurfaceDoesNotHaveAreSpanned)
+{
+  for (const auto& [tissue, c] : { std::make_pair(std::string("TibialCartilage"), sweepCase(1014)),
+         std::make_pair(std::string("Meniscus"), sweepCase(1014, true)) })
+  {
+    SCOPED_TRACE(tissue + ", " + c.toString());
+    const TriangleMesh mesh = segmented(tissueModel(tissue), c);
+    const TriangleMesh input =
+      validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh;
+    const TriangleMesh closed = closeSmallTunnels(input);
+    const GeneratedCollisionMesh generated = makeCollisionMidSurface(closed,
+      []
+      {
+        CollisionMeshSettings settings;
+        settings.vertexCount = 105;
+        return settings;
+      }());
+    EXPECT_EQ(TriangleMeshAdjacency(closed).closedSurfaceGenus(), 0);
+    EXPECT_EQ(borderLoopCount(generated.mesh), 1);
+    EXPECT_EQ(prepareAndCheck(mesh, tissue == "Meniscus"), "");
+  }
+}
+
+// The fine PCL of seed 1016: on its rough rim the geodesic rim paths and
+// the side paths between them crossed ("paths 32 and 155 cross inside
+// triangle ..."), and no re-routing parted them. The binding now falls
+// back on the labelled equator (the border between the visual triangles
+// on either side of the collision mid-surface, RimPathMethod::Automatic):
+// the PCL prepares and binds, where the geodesic rim paths alone fail.
+TEST(SegmentationSweep, ARoughRimTakesTheLabelledEquator)
+{
+  const TriangleMesh mesh = segmented(tissueModel("PosteriorCruciateLigament"), sweepCase(1016));
+  EXPECT_EQ(prepareAndCheck(mesh), "");
+  TissuePreparationSettings settings;
+  settings.collision.vertexCount = 105;
+  settings.hexahedronCount = 42;
+  settings.binding.rimPaths = RimPathMethod::Geodesic;
+  const TriangleMesh input =
+    validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh;
+  EXPECT_THROW(prepareTissue(input, settings), InvalidInputError);
 }
