@@ -286,10 +286,10 @@ Loop projectedLoop(const TriangleMesh& mesh,
 /// projected along n: the outline of the shadow and of its holes (the gap
 /// of a tear through the thickness), and the folds of the surface.
 std::vector<Loop> silhouetteLoops(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency,
   const ProjectedSurface& surface,
   const Vector3& n)
 {
-  const TriangleMeshAdjacency adjacency(mesh);
   std::vector<char> facingUp(mesh.triangleCount());
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
   {
@@ -1690,7 +1690,7 @@ double seeThroughFraction(const ProjectedSurface& surface, const Loop& hole, dou
 /// (a hole whose rim closes on itself, a cap where a segmentation's
 /// tunnel was closed: the rim paths around it would leave a side in two
 /// pieces). Beyond the genus, the holes seen through least are filled.
-void keepHolesTheSurfaceHas(const TriangleMesh& visual,
+void keepHolesTheSurfaceHas(const TriangleMeshAdjacency& adjacency,
   const ProjectedSurface& surface,
   double extent,
   std::vector<Loop>& loops)
@@ -1699,7 +1699,7 @@ void keepHolesTheSurfaceHas(const TriangleMesh& visual,
   {
     return;
   }
-  const int genus = TriangleMeshAdjacency(visual).closedSurfaceGenus();
+  const int genus = adjacency.closedSurfaceGenus();
   if (static_cast<int>(loops.size()) - 1 <= genus)
   {
     return;
@@ -1727,8 +1727,9 @@ std::vector<Loop> outlineAlongAxis(const TriangleMesh& visual,
   double extent)
 {
   bool tangled = false;
-  std::vector<Loop> loops =
-    outlineAndHoles(silhouetteLoops(visual, surface, surface.axis()), surface, extent, tangled);
+  const TriangleMeshAdjacency adjacency(visual);
+  std::vector<Loop> loops = outlineAndHoles(
+    silhouetteLoops(visual, adjacency, surface, surface.axis()), surface, extent, tangled);
   if (loops.empty() || tangled || crossesItself(loops.front()))
   {
     loops = outlineAndHoles(shadowLoops(visual, surface), surface, extent, tangled);
@@ -1737,7 +1738,7 @@ std::vector<Loop> outlineAlongAxis(const TriangleMesh& visual,
   {
     throw InvalidInputError(nameOf(visual) + ": no outline seen along the thickness axis");
   }
-  keepHolesTheSurfaceHas(visual, surface, extent, loops);
+  keepHolesTheSurfaceHas(adjacency, surface, extent, loops);
   return loops;
 }
 

@@ -31,41 +31,6 @@ std::string visualName(const EquatorInput& in)
   return "visual mesh '" + in.visual->name + "'";
 }
 
-/// The border loops of the collision mesh as collision vertices in order
-/// (either direction).
-std::vector<std::vector<int>> borderLoops(const EquatorInput& in)
-{
-  std::vector<std::vector<int>> neighbours(in.collision->vertexCount());
-  for (const auto& edge : in.rimEdges)
-  {
-    neighbours[edge[0]].push_back(edge[1]);
-    neighbours[edge[1]].push_back(edge[0]);
-  }
-  for (std::size_t c = 0; c < neighbours.size(); ++c)
-    if (!neighbours[c].empty() && neighbours[c].size() != 2)
-      throw InvalidInputError("collision mesh '" + in.collision->name + "': border vertex " +
-                              std::to_string(c) + " joins " + std::to_string(neighbours[c].size()) +
-                              " border edges, not 2");
-  std::vector<std::vector<int>> loops;
-  std::vector<char> visited(neighbours.size(), 0);
-  for (std::size_t start = 0; start < neighbours.size(); ++start)
-  {
-    if (neighbours[start].empty() || visited[start])
-      continue;
-    std::vector<int>& loop = loops.emplace_back();
-    int previous = -1;
-    for (int c = static_cast<int>(start); !visited[c];)
-    {
-      visited[c] = 1;
-      loop.push_back(c);
-      const int following = neighbours[c][0] != previous ? neighbours[c][0] : neighbours[c][1];
-      previous = c;
-      c = following;
-    }
-  }
-  return loops;
-}
-
 /// Per collision vertex: whether it borders a hole (a border loop other
 /// than the longest, the outline's).
 std::vector<char> holeBorderVertices(const EquatorInput& in,
@@ -93,7 +58,7 @@ bool beyondHoleBorder(const Triangle& tri,
   const Vector3& away,
   const Vector3& normal,
   const std::vector<char>& holeBorder,
-  const std::vector<std::array<int, 2>>& borderEdges)
+  const TriangleMeshAdjacency& collisionAdjacency)
 {
   const double along = std::abs(away.dot(normal.normalized()));
   if (away.norm() - along <= 1e-3 * away.norm())
@@ -105,8 +70,7 @@ bool beyondHoleBorder(const Triangle& tri,
     const int b = tri[(k + 2) % 3];
     if (q.barycentric[k] > OnEdge || !holeBorder[a] || !holeBorder[b])
       continue;
-    const std::array<int, 2> edge{ { std::min(a, b), std::max(a, b) } };
-    if (std::binary_search(borderEdges.begin(), borderEdges.end(), edge))
+    if (collisionAdjacency.isBorderEdge(collisionAdjacency.findEdge(a, b)))
       return true;
   }
   return false;
@@ -125,19 +89,13 @@ struct SideOfMidSurface
 /// coarse and its triangles well shaped), and whether it lies beyond the
 /// border of a hole (its closest point on a border edge there, and off the
 /// normal through it).
-SideOfMidSurface sideOfMidSurface(const EquatorInput& in, const std::vector<char>& holeBorder)
+SideOfMidSurface sideOfMidSurface(const EquatorInput& in,
+  const TriangleMeshAdjacency& collisionAdjacency,
+  const std::vector<char>& holeBorder)
 {
   const TriangleMesh& visual = *in.visual;
   const TriangleMesh& collision = *in.collision;
   const std::vector<Vector3>& normals = *in.collisionNormals;
-  std::vector<std::vector<int>> trianglesAt(collision.vertexCount());
-  for (std::size_t t = 0; t < collision.triangleCount(); ++t)
-    for (int c : collision.triangles[t])
-      trianglesAt[c].push_back(static_cast<int>(t));
-  std::vector<std::array<int, 2>> borderEdges;
-  for (const auto& edge : in.rimEdges)
-    borderEdges.push_back({ { std::min(edge[0], edge[1]), std::max(edge[0], edge[1]) } });
-  std::sort(borderEdges.begin(), borderEdges.end());
   SideOfMidSurface side;
   side.offset.assign(visual.vertexCount(), 0.0);
   side.beyondHole.assign(visual.vertexCount(), 0);
@@ -157,9 +115,11 @@ SideOfMidSurface sideOfMidSurface(const EquatorInput& in, const std::vector<char
     }
     side.offset[v] = (p - collision.positions[nearest]).dot(normals[nearest]);
     double closest = Infinity;
-    for (int t : trianglesAt[nearest])
+    for (const int* t = collisionAdjacency.vertexTrianglesBegin(nearest);
+         t != collisionAdjacency.vertexTrianglesEnd(nearest);
+         ++t)
     {
-      const Triangle& tri = collision.triangles[t];
+      const Triangle& tri = collision.triangles[*t];
       const TriangleClosestPoint q = closestPointOnTriangleWithBarycentric(
         p, collision.positions[tri[0]], collision.positions[tri[1]], collision.positions[tri[2]]);
       const double d = (q.point - p).squaredNorm();
@@ -170,7 +130,8 @@ SideOfMidSurface sideOfMidSurface(const EquatorInput& in, const std::vector<char
                         q.barycentric[2] * normals[tri[2]];
       const Vector3 away = p - q.point;
       side.offset[v] = away.dot(n);
-      side.beyondHole[v] = beyondHoleBorder(tri, q, away, n, holeBorder, borderEdges) ? 1 : 0;
+      side.beyondHole[v] =
+        beyondHoleBorder(tri, q, away, n, holeBorder, collisionAdjacency) ? 1 : 0;
     }
   }
   return side;
@@ -316,11 +277,12 @@ int removePinches(const EquatorInput& in, TriangleLabels& labels)
 
 /// The labels of the triangles, each half one piece without pinches.
 std::vector<std::int8_t> halfLabels(const EquatorInput& in,
+  const TriangleMeshAdjacency& collisionAdjacency,
   const std::vector<std::vector<int>>& borders,
   int& relabelled)
 {
-  TriangleLabels labels =
-    sideLabels(*in.visual, sideOfMidSurface(in, holeBorderVertices(in, borders)));
+  TriangleLabels labels = sideLabels(
+    *in.visual, sideOfMidSurface(in, collisionAdjacency, holeBorderVertices(in, borders)));
   relabelled = 0;
   for (int round = 0; round < LabelRounds; ++round)
   {
@@ -476,8 +438,11 @@ std::vector<int> arcOf(const std::vector<int>& loop, int from, int to)
 EquatorRimPaths equatorRimPaths(const EquatorInput& in)
 {
   EquatorRimPaths result;
-  const std::vector<std::vector<int>> borders = borderLoops(in);
-  const std::vector<std::int8_t> label = halfLabels(in, borders, result.relabelledTriangles);
+  const TriangleMeshAdjacency collisionAdjacency(*in.collision);
+  const std::vector<std::vector<int>> borders = borderLoops(
+    collisionAdjacency, in.collision->vertexCount(), "collision mesh '" + in.collision->name + "'");
+  const std::vector<std::int8_t> label =
+    halfLabels(in, collisionAdjacency, borders, result.relabelledTriangles);
   const std::vector<std::vector<int>> loops = equatorLoops(in, label);
   if (loops.size() != borders.size())
     throw InvalidInputError(

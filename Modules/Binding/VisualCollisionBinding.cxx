@@ -2375,7 +2375,13 @@ struct BindingStages
   const BindingProgress& progress;
   std::vector<PathRequest> rimRequests;
   std::vector<PathRequest> innerRequests;
-  double pathsDone; ///< paths in all, for progress
+
+  /// Progress when the rim paths are done (paths 0.1-0.7, shared by count).
+  double rimPathsDone() const
+  {
+    const auto all = static_cast<double>(rimRequests.size() + innerRequests.size());
+    return 0.1 + 0.6 * static_cast<double>(rimRequests.size()) / all;
+  }
 };
 
 /// The equator (5.2.2): the rim paths inserted into the visual mesh, their
@@ -2395,7 +2401,7 @@ RimPaths geodesicRimPaths(VisualCollisionBinding& binding,
   const BindingStages& stages)
 {
   RimPaths rim;
-  const double rimDone = 0.1 + 0.6 * stages.rimRequests.size() / stages.pathsDone;
+  const double rimDone = stages.rimPathsDone();
   const GeodesicPathFinder finder(start, startAdjacency);
   std::vector<SurfacePath> rimPaths = computePaths(finder,
     stages.rimRequests,
@@ -2490,7 +2496,9 @@ RimPaths labelledRimPaths(VisualCollisionBinding& binding,
 /// 5.2.2-5.2.3 after the rim paths: the halves they bound, the inner paths
 /// on them, the re-meshing along all paths, the regions and their
 /// parameters.
-void bindAlongRimPaths(VisualCollisionBinding& binding, RimPaths& rim, BindingStages& stages)
+void bindAlongRimPaths(VisualCollisionBinding& binding,
+  const RimPaths& rim,
+  const BindingStages& stages)
 {
   const TriangleMesh& collision = stages.collision;
   const CollisionTopology& topology = stages.topology;
@@ -2518,7 +2526,7 @@ void bindAlongRimPaths(VisualCollisionBinding& binding, RimPaths& rim, BindingSt
       &regions,
       stages.settings.parallel,
       stages.progress,
-      0.1 + 0.6 * stages.rimRequests.size() / stages.pathsDone,
+      stages.rimPathsDone(),
       0.7,
       innerDetours);
   }
@@ -2596,9 +2604,8 @@ VisualCollisionBinding bindVisualToCollision(const TriangleMesh& visual,
   // rim, and an inner edge joining two border vertices (a corner of a grid)
   // gets two distinct paths between the same two rim vertices.
   report(progress, 0.1, "computing geodesic paths");
-  BindingStages stages{ collision, topology, settings, progress, {}, {}, 0.0 };
+  BindingStages stages{ collision, topology, settings, progress, {}, {} };
   collectPathRequests(binding, topology, stages.rimRequests, stages.innerRequests);
-  stages.pathsDone = static_cast<double>(stages.rimRequests.size() + stages.innerRequests.size());
   const bool labelledOnly = settings.rimPaths == RimPathMethod::Labelled;
   if (labelledOnly && !equatorMayServe(topology, stages.rimRequests))
   {

@@ -72,6 +72,49 @@ int floodTrianglePieces(const TriangleMeshAdjacency& adjacency,
   return pieces;
 }
 
+std::vector<std::vector<int>> borderLoops(const TriangleMeshAdjacency& adjacency,
+  std::size_t vertexCount,
+  const std::string& meshLabel)
+{
+  std::vector<std::vector<int>> neighbours(vertexCount);
+  for (int e = 0; e < static_cast<int>(adjacency.edgeCount()); ++e)
+  {
+    if (adjacency.isBorderEdge(e))
+    {
+      neighbours[adjacency.edge(e)[0]].push_back(adjacency.edge(e)[1]);
+      neighbours[adjacency.edge(e)[1]].push_back(adjacency.edge(e)[0]);
+    }
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v)
+  {
+    if (!neighbours[v].empty() && neighbours[v].size() != 2)
+    {
+      throw InvalidInputError(meshLabel + ": border vertex " + std::to_string(v) + " joins " +
+                              std::to_string(neighbours[v].size()) + " border edges, not 2");
+    }
+  }
+  std::vector<std::vector<int>> loops;
+  std::vector<char> visited(vertexCount, 0);
+  for (std::size_t start = 0; start < vertexCount; ++start)
+  {
+    if (neighbours[start].empty() || visited[start])
+    {
+      continue;
+    }
+    std::vector<int>& loop = loops.emplace_back();
+    int previous = -1;
+    for (int v = static_cast<int>(start); !visited[v];)
+    {
+      visited[v] = 1;
+      loop.push_back(v);
+      const int following = neighbours[v][0] != previous ? neighbours[v][0] : neighbours[v][1];
+      previous = v;
+      v = following;
+    }
+  }
+  return loops;
+}
+
 namespace
 {
 

@@ -55,6 +55,15 @@ THINTISSUECORE_EXPORT int floodTrianglePieces(const TriangleMeshAdjacency& adjac
   const std::function<bool(int triangle, int edge)>& joined,
   std::vector<int>& piece);
 
+/// The border loops of a mesh: its border edges joined end to end, each
+/// loop as its vertices in order (in either direction), loops in the order
+/// of their lowest vertex. InvalidInputError naming `meshLabel` when a
+/// border vertex joins other than two border edges.
+THINTISSUECORE_EXPORT std::vector<std::vector<int>> borderLoops(
+  const TriangleMeshAdjacency& adjacency,
+  std::size_t vertexCount,
+  const std::string& meshLabel);
+
 /// How many pieces `mesh` has (without copying them).
 THINTISSUECORE_EXPORT std::size_t countPieces(const TriangleMesh& mesh);
 

@@ -5,6 +5,7 @@
 #include "MeshPieces.h"
 #include "MeshPrimitives.h"
 #include "ThinTissueError.h"
+#include "TriangleMeshAdjacency.h"
 
 #include <gtest/gtest.h>
 
@@ -116,6 +117,103 @@ TEST(MeshPieces, FragmentsBelowTheFractionAreDropped)
   EXPECT_EQ(selectPieces(mesh, 1.0).kept.size(), 1u);
   EXPECT_THROW(selectPieces(mesh, 1.5), InvalidInputError);
   EXPECT_TRUE(splitIntoPieces(TriangleMesh()).empty());
+}
+
+namespace
+{
+
+/// A flat 4 x 4 grid of squares (5 x 5 vertices, two triangles a square),
+/// without the two triangles of square (1, 1) when `hole`.
+TriangleMesh flatGrid(bool hole)
+{
+  TriangleMesh mesh;
+  mesh.name = "grid";
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i)
+      mesh.positions.emplace_back(i, j, 0.0);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i)
+    {
+      if (hole && i == 1 && j == 1)
+        continue;
+      const int a = 5 * j + i;
+      mesh.triangles.push_back({ { a, a + 1, a + 6 } });
+      mesh.triangles.push_back({ { a, a + 6, a + 5 } });
+    }
+  return mesh;
+}
+
+} // namespace
+
+// The border loops of a grid with a hole: the outline's 16 vertices and
+// the hole's 4, each loop running along border edges; a vertex joining
+// four border edges (two triangles touching at a corner) is refused by
+// the mesh's name.
+TEST(MeshPieces, BorderLoopsRunAlongTheBorderEdges)
+{
+  const TriangleMesh mesh = flatGrid(true);
+  const TriangleMeshAdjacency adjacency(mesh);
+  const std::vector<std::vector<int>> loops = borderLoops(adjacency, mesh.vertexCount(), "grid");
+  ASSERT_EQ(loops.size(), 2u);
+  EXPECT_EQ(loops[0].size(), 16u);
+  EXPECT_EQ(loops[1].size(), 4u);
+  for (const std::vector<int>& loop : loops)
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      const int e = adjacency.findEdge(loop[i], loop[(i + 1) % loop.size()]);
+      ASSERT_GE(e, 0);
+      EXPECT_TRUE(adjacency.isBorderEdge(e));
+    }
+  const TriangleMesh closed = slab(1.0, Vector3::Zero());
+  EXPECT_TRUE(borderLoops(TriangleMeshAdjacency(closed), closed.vertexCount(), "slab").empty());
+
+  TriangleMesh bowTie;
+  bowTie.positions = {
+    Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(-1, 0, 0), Vector3(0, -1, 0)
+  };
+  bowTie.triangles = { { { 0, 1, 2 } }, { { 0, 3, 4 } } };
+  try
+  {
+    borderLoops(TriangleMeshAdjacency(bowTie), bowTie.vertexCount(), "mesh 'bow tie'");
+    ADD_FAILURE() << "a vertex of four border edges was accepted";
+  }
+  catch (const InvalidInputError& error)
+  {
+    EXPECT_NE(
+      std::string(error.what()).find("mesh 'bow tie': border vertex 0 joins 4"), std::string::npos)
+      << error.what();
+  }
+}
+
+// Pieces flooded across the edges a predicate joins: all of them (one
+// piece), none (a piece per triangle), all but those crossing the grid's
+// middle column line (two pieces, numbered by their first triangle).
+TEST(MeshPieces, TrianglePiecesFloodAcrossJoinedEdges)
+{
+  const TriangleMesh mesh = flatGrid(false);
+  const TriangleMeshAdjacency adjacency(mesh);
+  std::vector<int> piece;
+  EXPECT_EQ(floodTrianglePieces(
+              adjacency, mesh.triangleCount(), [](int, int) { return true; }, piece),
+    1);
+  EXPECT_EQ(floodTrianglePieces(
+              adjacency, mesh.triangleCount(), [](int, int) { return false; }, piece),
+    static_cast<int>(mesh.triangleCount()));
+  auto onMiddleLine = [&](int t, int k)
+  {
+    const Triangle& tri = mesh.triangles[t];
+    return mesh.positions[tri[k]].x() == 2.0 && mesh.positions[tri[(k + 1) % 3]].x() == 2.0;
+  };
+  EXPECT_EQ(
+    floodTrianglePieces(
+      adjacency, mesh.triangleCount(), [&](int t, int k) { return !onMiddleLine(t, k); }, piece),
+    2);
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+  {
+    const Triangle& tri = mesh.triangles[t];
+    const double x = (mesh.positions[tri[0]] + mesh.positions[tri[1]] + mesh.positions[tri[2]]).x();
+    EXPECT_EQ(piece[t], x < 6.0 ? 0 : 1) << "triangle " << t;
+  }
 }
 
 TEST(LengthUnits, NamesScalesAndDetection)
