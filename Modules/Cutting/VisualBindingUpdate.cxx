@@ -41,6 +41,21 @@ int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vec
   return best;
 }
 
+/// Formula 5-2's M^-1 per piece of the split.
+std::vector<Eigen::Matrix3d> childInverses(const CollisionTriangleSplit& split)
+{
+  std::vector<Eigen::Matrix3d> inverses;
+  inverses.reserve(split.childCorners.size());
+  for (const auto& childCorners : split.childCorners)
+  {
+    Eigen::Matrix3d m;
+    for (int k = 0; k < 3; ++k)
+      m.row(k) = childCorners[k].transpose();
+    inverses.push_back(m.inverse());
+  }
+  return inverses;
+}
+
 } // namespace
 
 void CuttableVisualMesh::rebindSplitRegions(CutContext& context)
@@ -66,7 +81,10 @@ void CuttableVisualMesh::rebindRegion(RegionCut& region,
 {
   worker.activate(region);
   const std::vector<char> onCut = bindCrossingVertices(region, worker, context);
-  assignPieces(region, onCut, worker, context);
+  region.locatedPieces = Settings.piecesByLocation && region.foldFree &&
+                         locatePieces(region, onCut, worker.buffers, context);
+  if (!region.locatedPieces)
+    assignPieces(region, onCut, worker, context);
   worker.deactivate(region);
 }
 
@@ -329,25 +347,8 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
     for (std::size_t i = 0; i < triangleCount; ++i)
       members[cursor[triangleIn[i]]++] = static_cast<int>(i);
   }
-  std::vector<Eigen::Matrix3d> inverses;
-  inverses.reserve(split.childCorners.size());
-  for (const auto& childCorners : split.childCorners)
-  {
-    Eigen::Matrix3d m;
-    for (int k = 0; k < 3; ++k)
-      m.row(k) = childCorners[k].transpose();
-    inverses.push_back(m.inverse());
-  }
-  // Per local vertex: whether formula 5-2 rebinds it (bound to the parent,
-  // off the traced cuts); rebindPiece clears it once done.
-  const int parent = split.parent;
-  auto& rebindable = buffers.rebindable;
-  rebindable.resize(count);
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const VisualVertexBinding& b = Bindings[region.vertices[i]];
-    rebindable[i] = b.kind == BindingKind::CollisionTriangle && b.element == parent && !onCut[i];
-  }
+  const std::vector<Eigen::Matrix3d> inverses = childInverses(split);
+  markRebindable(region, split.parent, onCut, buffers);
   for (std::size_t p = 0; p < pieces; ++p)
   {
     const int size = pieceStart[p + 1] - pieceStart[p];
@@ -355,6 +356,154 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
     rebindPiece(
       region, members.data() + pieceStart[p], size, split.children[c], inverses[c], buffers);
   }
+}
+
+void CuttableVisualMesh::markRebindable(const RegionCut& region,
+  int parent,
+  const std::vector<char>& onCut,
+  CutBuffers& buffers) const
+{
+  auto& rebindable = buffers.rebindable;
+  rebindable.resize(region.vertices.size());
+  for (std::size_t i = 0; i < region.vertices.size(); ++i)
+  {
+    const VisualVertexBinding& b = Bindings[region.vertices[i]];
+    rebindable[i] = b.kind == BindingKind::CollisionTriangle && b.element == parent && !onCut[i];
+  }
+}
+
+// Where the region lies in its plane without a fold, each collision piece
+// is convex there and bounded inside the parent by traced crossings, which
+// the re-meshing made straight and lined with visual vertices (within
+// OnLineTolerance of the line): no triangle straddles one, so a triangle
+// lies in the piece on whose inner side of each of its crossings its
+// centroid lies. Those are the union-find's pieces (assignPieces), found
+// with a sign test per crossing and triangle. False, having changed
+// nothing, where a centroid lies within that tolerance of a crossing (a
+// corner snapped onto the line may put it on the wrong side) or not in
+// exactly one piece.
+bool CuttableVisualMesh::locatePieces(RegionCut& region,
+  const std::vector<char>& onCut,
+  CutBuffers& buffers,
+  const CutContext& context)
+{
+  const CollisionTriangleSplit& split = context.cut->splits[region.split];
+  const std::array<Vector2, 3>& frame = region.frame;
+  const double margin = OnLineTolerance * std::max({ (frame[1] - frame[0]).norm(),
+                                            (frame[2] - frame[1]).norm(),
+                                            (frame[0] - frame[2]).norm() });
+  PieceLocator locator;
+  if (!pieceLocator(region, split, context, margin, locator))
+    return false;
+  const int pieces = static_cast<int>(split.children.size());
+  const std::size_t triangleCount = region.newTriangles.size();
+  auto& triangleIn = buffers.triangleIn;
+  triangleIn.resize(triangleCount);
+  auto& pieceStart = buffers.pieceStart;
+  pieceStart.assign(static_cast<std::size_t>(pieces) + 1, 0);
+  for (std::size_t i = 0; i < triangleCount; ++i)
+  {
+    const Triangle& corners = region.newLocalTriangles[i];
+    const Vector2 centroid =
+      (region.planar[corners[0]] + region.planar[corners[1]] + region.planar[corners[2]]) / 3.0;
+    unsigned sides = 0;
+    for (int l = 0; l < locator.lineCount; ++l)
+    {
+      const double d = locator.normal[l].dot(centroid - locator.from[l]);
+      if (std::abs(d) <= margin)
+        return false;
+      sides |= (d > 0.0 ? 1u : 0u) << l;
+    }
+    const int in = locator.pieceOfSides[sides];
+    if (in < 0)
+      return false;
+    triangleIn[i] = in;
+    ++pieceStart[in + 1];
+  }
+  for (int c = 0; c < pieces; ++c)
+    pieceStart[c + 1] += pieceStart[c];
+  auto& members = buffers.members;
+  members.resize(triangleCount);
+  auto& cursor = buffers.pieceOf;
+  cursor.assign(pieceStart.begin(), pieceStart.end() - 1);
+  for (std::size_t i = 0; i < triangleCount; ++i)
+    members[cursor[triangleIn[i]]++] = static_cast<int>(i);
+  const std::vector<Eigen::Matrix3d> inverses = childInverses(split);
+  markRebindable(region, split.parent, onCut, buffers);
+  for (int c = 0; c < pieces; ++c)
+    if (pieceStart[c + 1] > pieceStart[c])
+      rebindPiece(region,
+        members.data() + pieceStart[c],
+        pieceStart[c + 1] - pieceStart[c],
+        split.children[c],
+        inverses[c],
+        buffers);
+  return true;
+}
+
+// The crossings of the split in the region's plane (the lines its traced
+// paths run along) and, per combination of sides of them, the collision
+// piece inside all its crossings there (-1: none or several). False where
+// a piece's side inside the parent is no traced crossing, or a line or a
+// piece is degenerate.
+bool CuttableVisualMesh::pieceLocator(const RegionCut& region,
+  const CollisionTriangleSplit& split,
+  const CutContext& context,
+  double margin,
+  PieceLocator& locator) const
+{
+  const std::array<Vector2, 3>& frame = region.frame;
+  const int pieces = static_cast<int>(split.children.size());
+  // Per piece: the sides (bit per line) it needs, and which lines it needs.
+  std::array<std::pair<unsigned, unsigned>, PieceLocator::MaxPieces> needs{};
+  if (pieces > PieceLocator::MaxPieces || region.crossings.size() > PieceLocator::MaxLines)
+    return false;
+  locator.lineCount = static_cast<int>(region.crossings.size());
+  for (int l = 0; l < locator.lineCount; ++l)
+  {
+    const auto& planar = region.crossings[l].planar;
+    const Vector2 along = planar[1] - planar[0];
+    const double length = along.norm();
+    if (!(length > margin))
+      return false;
+    locator.from[l] = planar[0];
+    locator.normal[l] = Vector2(-along.y(), along.x()) / length;
+  }
+  for (int c = 0; c < pieces; ++c)
+  {
+    const auto& corners = split.childCorners[c];
+    const Vector3 middle = (corners[0] + corners[1] + corners[2]) / 3.0;
+    const Vector2 inner = middle[0] * frame[0] + middle[1] * frame[1] + middle[2] * frame[2];
+    const Triangle& piece = context.collision->triangles()[split.children[c]];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (alongParentSide(corners[k], corners[(k + 1) % 3]))
+        continue;
+      std::array<int, 2> ends{ { context.root(piece[k]), context.root(piece[(k + 1) % 3]) } };
+      if (ends[0] > ends[1])
+        std::swap(ends[0], ends[1]);
+      const auto crossing = std::find_if(region.crossings.begin(),
+        region.crossings.end(),
+        [&](const CrossingPath& other) { return other.ends == ends; });
+      if (crossing == region.crossings.end())
+        return false;
+      const int l = static_cast<int>(crossing - region.crossings.begin());
+      const double d = locator.normal[l].dot(inner - locator.from[l]);
+      if (std::abs(d) <= margin)
+        return false;
+      needs[c].first |= 1u << l;
+      needs[c].second |= (d > 0.0 ? 1u : 0u) << l;
+    }
+  }
+  for (unsigned sides = 0; sides < locator.pieceOfSides.size(); ++sides)
+  {
+    int in = -1;
+    for (int c = 0; c < pieces; ++c)
+      if ((sides & needs[c].first) == needs[c].second)
+        in = in == -1 ? c : -2;
+    locator.pieceOfSides[sides] = static_cast<std::int8_t>(std::max(in, -1));
+  }
+  return true;
 }
 
 // A piece of a split region goes to collision triangle `child`; its inner
@@ -824,6 +973,10 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
       std::fill(worker.localIndex.begin(), worker.localIndex.end(), -1);
     throw;
   }
+  result.splitRegions = context.regions.size();
+  result.regionsLocated = static_cast<std::size_t>(std::count_if(context.regions.begin(),
+    context.regions.end(),
+    [](const RegionCut& region) { return region.locatedPieces; }));
   finishEdgePoints(context);
   openVisualMesh(collision, context);
   updateEdgePaths(collision, context);

@@ -25,8 +25,7 @@ namespace thintissue
 namespace
 {
 
-constexpr double OnLineTolerance = 1e-7; ///< of the triangle's longest side
-constexpr double CutEndMargin = 1e-7;    ///< of the cut's length
+constexpr double CutEndMargin = 1e-7; ///< of the cut's length
 constexpr double PathSnap =
   1e-3; ///< of a visual edge: a cut this near a path vertex goes through it
 constexpr double BorderClearance = 1e-6; ///< of a visual edge, off the border
@@ -254,11 +253,12 @@ std::vector<int> foldedTriangles(const std::vector<Vector2>& planar,
 /// inner vertices around the fold are moved to the average of their
 /// neighbours until it unfolds (Tutte's embedding of the whole region if
 /// that does not do); every other vertex stays where its binding puts it.
-/// Local vertex indices (RegionCut).
+/// Local vertex indices (RegionCut). `foldFree`: no repair was needed.
 std::vector<Vector2> regionPlane(const std::vector<Vector3>& parameters,
   const std::vector<Triangle>& triangles,
   const std::vector<char>& isInner,
-  const std::array<Vector2, 3>& frame)
+  const std::array<Vector2, 3>& frame,
+  bool& foldFree)
 {
   const std::size_t count = parameters.size();
   std::vector<Vector2> planar(count);
@@ -267,6 +267,7 @@ std::vector<Vector2> regionPlane(const std::vector<Vector3>& parameters,
   for (int round = 0; round < 32; ++round)
   {
     const std::vector<int> folded = foldedTriangles(planar, triangles);
+    foldFree = round == 0 && folded.empty();
     if (folded.empty())
       return planar;
     std::vector<char> moving(count, 0);
@@ -871,8 +872,7 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
       {
         const Vector3& p = split.childCorners[c][k];
         const Vector3& q = split.childCorners[c][(k + 1) % 3];
-        if ((p[0] == 0.0 && q[0] == 0.0) || (p[1] == 0.0 && q[1] == 0.0) ||
-            (p[2] == 0.0 && q[2] == 0.0))
+        if (alongParentSide(p, q))
           continue;
         CrossingPath crossing;
         crossing.ends = { { context.root(piece[k]), context.root(piece[(k + 1) % 3]) } };
@@ -948,7 +948,7 @@ void CuttableVisualMesh::traceRegion(RegionCut& region,
   std::vector<char> isInner(region.vertices.size());
   for (std::size_t i = 0; i < region.vertices.size(); ++i)
     isInner[i] = Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle;
-  region.planar = regionPlane(region.parameters, triangles, isInner, frame);
+  region.planar = regionPlane(region.parameters, triangles, isInner, frame, region.foldFree);
   region.planar.reserve(room);
   region.candidate.assign(region.triangles.size(), 0);
   for (const auto& corners : split.childCorners)

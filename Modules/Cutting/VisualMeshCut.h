@@ -79,6 +79,13 @@ struct VisualCutSettings
   /// Below the default a second thread costs more than it saves (measured:
   /// Documentation/Architecture.md, "regions on two cores").
   std::size_t parallelRegionTriangles = 4000;
+  /// Where a split region lies in its plane without a fold, its triangles
+  /// go to the collision pieces their centroids lie in (a few sign tests
+  /// each) instead of through the union-find of the region's pieces, which
+  /// gives the same pieces there and stays the way wherever the plane
+  /// folds or a centroid lies within a round-off of a crossing. false: the
+  /// union-find always (the reference the tests compare with).
+  bool piecesByLocation = true;
 };
 
 /// How far the cut surface departs from the smooth cut (6.4.4): over the
@@ -106,6 +113,11 @@ struct VisualCutResult
   std::vector<int> changedTriangles;
   /// Milliseconds of the cut surface's update (5.3.4), part of the cut.
   double cutSurfaceMilliseconds = 0.0;
+  /// Regions of split collision triangles (one per side), and how many of
+  /// them found their pieces by location (VisualCutSettings::
+  /// piecesByLocation) rather than by the union-find.
+  std::size_t splitRegions = 0;
+  std::size_t regionsLocated = 0;
   bool changed() const { return !changedTriangles.empty(); }
 };
 
@@ -380,6 +392,16 @@ private:
   std::vector<char> bindCrossingVertices(RegionCut& region,
     RegionWorker& worker,
     const CutContext& context);
+  struct PieceLocator;
+  bool pieceLocator(const RegionCut& region,
+    const CollisionTriangleSplit& split,
+    const CutContext& context,
+    double margin,
+    PieceLocator& locator) const;
+  bool locatePieces(RegionCut& region,
+    const std::vector<char>& onCut,
+    CutBuffers& buffers,
+    const CutContext& context);
   void assignPieces(RegionCut& region,
     const std::vector<char>& onCut,
     RegionWorker& worker,
@@ -394,6 +416,12 @@ private:
     int child,
     const Eigen::Matrix3d& inverse,
     CutBuffers& buffers);
+  /// Per local vertex: whether formula 5-2 rebinds it (bound to the parent,
+  /// off the traced cuts); rebindPiece clears it once done.
+  void markRebindable(const RegionCut& region,
+    int parent,
+    const std::vector<char>& onCut,
+    CutBuffers& buffers) const;
   void finishEdgePoints(CutContext& context);
   bool rootStillUses(const CuttableCollisionMesh& collision, int v) const;
   /// A corner of a visual triangle that needs the copy of its vertex a

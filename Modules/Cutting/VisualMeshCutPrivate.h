@@ -14,6 +14,31 @@
 namespace thintissue
 {
 
+/// A visual vertex this near a traced cut's line lies on it (of the split
+/// triangle's longest side in its plane).
+constexpr double OnLineTolerance = 1e-7;
+
+/// Whether the segment between two points given in a triangle's
+/// barycentric coordinates runs along one of its sides.
+inline bool alongParentSide(const Vector3& p, const Vector3& q)
+{
+  return (p[0] == 0.0 && q[0] == 0.0) || (p[1] == 0.0 && q[1] == 0.0) ||
+         (p[2] == 0.0 && q[2] == 0.0);
+}
+
+/// The collision pieces of a split in its region's plane: its crossings'
+/// lines (unit normals), and the piece on the inner side of all its
+/// crossings per combination of sides (bit l: normal l . (x - from l) > 0).
+struct CuttableVisualMesh::PieceLocator
+{
+  static constexpr int MaxLines = 3;
+  static constexpr int MaxPieces = 4;
+  int lineCount = 0;
+  std::array<Vector2, MaxLines> from;
+  std::array<Vector2, MaxLines> normal;
+  std::array<std::int8_t, 1u << MaxLines> pieceOfSides{};
+};
+
 /// A collision vertex made inside collision edge (a, b), a < b, at
 /// parameter u from a, and where it lies on the edge's visual paths.
 struct CuttableVisualMesh::EdgePoint
@@ -71,6 +96,11 @@ struct CuttableVisualMesh::RegionCut
   std::vector<Vector3> parameters;
   std::vector<Vector2> planar;
   std::array<Vector2, 3> frame; ///< the parent's corners in the plane
+  /// The binding's parameters laid the region out without a fold (no
+  /// repair): its pieces are the collision pieces (locatePieces).
+  bool foldFree = false;
+  /// Its pieces were found by location (locatePieces).
+  bool locatedPieces = false;
   /// The pieces of the split triangle in that plane.
   std::vector<std::array<Vector2, 3>> pieces;
   std::vector<CrossingPath> crossings;

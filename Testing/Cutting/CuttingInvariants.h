@@ -358,6 +358,8 @@ inline ::testing::AssertionResult sameVisualMesh(const CuttableVisualMesh& a,
     return ::testing::AssertionFailure() << "positions or triangles differ";
   if (x.textureCoordinates != y.textureCoordinates || x.textureCorners != y.textureCorners)
     return ::testing::AssertionFailure() << "texture coordinates differ";
+  if (a.triangleRegions() != b.triangleRegions() || a.triangleSides() != b.triangleSides())
+    return ::testing::AssertionFailure() << "the triangles' regions differ";
   if (a.bindings().size() != b.bindings().size())
     return ::testing::AssertionFailure() << "binding counts differ";
   for (std::size_t v = 0; v < a.bindings().size(); ++v)

@@ -55,20 +55,24 @@ public:
       settings.visual.cutSurfaceRows = e % 3;
       // Every other episode runs the region stages on several threads
       // whatever the regions' size (the models' regions are small).
-      TissueCutterSettings serial = settings;
-      serial.visual.parallelRegionTriangles = std::numeric_limits<std::size_t>::max();
-      if (e % 2 || CompareThreads)
+      if (e % 2 || CompareWith == Twin::OneThread)
         settings.visual.parallelRegionTriangles = 0;
+      TissueCutterSettings twinSettings = settings;
+      if (CompareWith == Twin::OneThread)
+        twinSettings.visual.parallelRegionTriangles = std::numeric_limits<std::size_t>::max();
+      if (CompareWith == Twin::UnionFindPieces)
+        twinSettings.visual.piecesByLocation = false;
       TissueCutter cutter = Binding ? TissueCutter(*Binding, Model.simulation, &fem, settings)
                                     : TissueCutter(Model.collision, Model.simulation, &fem);
-      // The twin cuts the same on one thread (CompareThreads).
+      // The twin cuts the same its own way (CompareWith).
       std::unique_ptr<CorotationalHexFem> twinFem;
       std::unique_ptr<TissueCutter> twin;
-      if (CompareThreads && Binding)
+      if (CompareWith != Twin::None && Binding)
       {
         twinFem = std::make_unique<CorotationalHexFem>(
           Model.simulation, test::softTissue(), sweepStepSettings());
-        twin = std::make_unique<TissueCutter>(*Binding, Model.simulation, twinFem.get(), serial);
+        twin =
+          std::make_unique<TissueCutter>(*Binding, Model.simulation, twinFem.get(), twinSettings);
       }
       // Prepared binding paths may lie beside their collision edges by more
       // than the cut's paths may (segmentations: paths detour around
@@ -94,6 +98,8 @@ public:
         {
           const auto report = cutter.cut(blade);
           ASSERT_EQ(report.visualError, "") << Model.name << ", episode " << e << ", sweep " << s;
+          SplitRegions += report.visual.splitRegions;
+          RegionsLocated += report.visual.regionsLocated;
           // Counts grow by what the cut touched only: copies of touched
           // hexahedra, at most one edge point and copies per changed triangle.
           const auto& touched = report.simulation.touchedHexahedra;
@@ -119,7 +125,8 @@ public:
           {
           }
           ASSERT_TRUE(sameVisualState(cutter, *twin))
-            << Model.name << ", episode " << e << ", sweep " << s << ": several threads and one";
+            << Model.name << ", episode " << e << ", sweep " << s << ": against the twin "
+            << (CompareWith == Twin::OneThread ? "on one thread" : "of union-find pieces");
         }
         ++Sweeps;
         ASSERT_TRUE(cutterIsConsistent(cutter, Model.simulation, rimOffset))
@@ -133,12 +140,24 @@ public:
   }
   int Sweeps = 0;
   int Refused = 0;
+  /// Over all sweeps: regions of split collision triangles, and those whose
+  /// pieces were found by location (VisualCutResult).
+  std::size_t SplitRegions = 0;
+  std::size_t RegionsLocated = 0;
   /// Cut the bound visual mesh too.
   const VisualCollisionBinding* Binding = nullptr;
-  /// With a binding: every episode cuts on several threads, and a twin
-  /// cutting the same on one thread must end each sweep with the same
-  /// visual mesh, binding and embedding, bit for bit.
-  bool CompareThreads = false;
+  /// With a binding, a twin cutter cuts the same blades and must end each
+  /// sweep with the same visual mesh, binding and embedding, bit for bit:
+  /// on one thread while every episode cuts on several (OneThread), or
+  /// finding the pieces of every split region by the union-find
+  /// (UnionFindPieces, against VisualCutSettings::piecesByLocation).
+  enum class Twin
+  {
+    None,
+    OneThread,
+    UnionFindPieces
+  };
+  Twin CompareWith = Twin::None;
 
   static ::testing::AssertionResult sameVisualState(const TissueCutter& a, const TissueCutter& b)
   {

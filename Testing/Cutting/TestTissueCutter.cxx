@@ -339,9 +339,31 @@ TEST(TissueCutterProperty, SeveralThreadsCutBitForBitAsOne)
     const VisualCollisionBinding binding = bindVisualToCollision(model->visual, model->collision);
     RandomSweeps sweeps(*model, 6161u);
     sweeps.Binding = &binding;
-    sweeps.CompareThreads = true;
+    sweeps.CompareWith = RandomSweeps::Twin::OneThread;
     sweeps.run(4, 20);
     EXPECT_EQ(sweeps.Sweeps, 80) << model->name;
+  }
+}
+
+TEST(TissueCutterProperty, PiecesByLocationAreTheUnionFindPieces)
+{
+  // VisualCutSettings::piecesByLocation: where a split region lies in its
+  // plane without a fold, the pieces found by location are the union-find's,
+  // so every sweep ends with the same visual mesh, binding, regions and
+  // embedding as a twin that takes the union-find; most regions are located.
+  MeniscusParameters parameters;
+  parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
+  const MeniscusModel meniscus = makeMeniscus(parameters);
+  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
+  for (const TissueModel* model : { static_cast<const TissueModel*>(&meniscus), &sheet })
+  {
+    const VisualCollisionBinding binding = bindVisualToCollision(model->visual, model->collision);
+    RandomSweeps sweeps(*model, 7272u);
+    sweeps.Binding = &binding;
+    sweeps.CompareWith = RandomSweeps::Twin::UnionFindPieces;
+    sweeps.run(4 * sweepScale(), 20);
+    EXPECT_EQ(sweeps.Sweeps, 80 * sweepScale()) << model->name;
+    EXPECT_GT(sweeps.RegionsLocated, sweeps.SplitRegions / 2) << model->name;
   }
 }
 

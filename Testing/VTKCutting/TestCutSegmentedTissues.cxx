@@ -68,14 +68,19 @@ TissueModel modelOf(const TissueBundle& bundle, const std::string& name)
 }
 
 /// `episodes` runs of 20 random sweeps over the prepared tissue, its bound
-/// visual mesh cut too; the invariants checked by RandomSweeps.
+/// visual mesh cut too; the invariants checked by RandomSweeps. The rough
+/// regions of a segmentation fold where procedural ones do not: each sweep
+/// must also end as on a twin that finds every region's pieces by the
+/// union-find (VisualCutSettings::piecesByLocation).
 void sweepPrepared(const TissueBundle& bundle, const std::string& name, unsigned seed, int episodes)
 {
   const TissueModel model = modelOf(bundle, name);
   RandomSweeps sweeps(model, seed);
   sweeps.Binding = &bundle.binding;
+  sweeps.CompareWith = RandomSweeps::Twin::UnionFindPieces;
   sweeps.run(episodes * sweepScale(), 20);
   EXPECT_EQ(sweeps.Sweeps, 20 * episodes * sweepScale()) << name;
+  EXPECT_GT(sweeps.RegionsLocated, sweeps.SplitRegions / 2) << name;
 }
 
 /// Random operations on the prepared tissue (in mm): punch bites and
