@@ -1684,25 +1684,88 @@ double seeThroughFraction(const ProjectedSurface& surface, const Loop& hole, dou
   return static_cast<double>(empty) / static_cast<double>(lattice.size());
 }
 
+/// Loop `b` joined to loop `a` across the nearest of their vertices (both
+/// with the tissue on their left: the outline counter-clockwise, holes
+/// clockwise, so that where they face each other they run opposite ways):
+/// `a` from the vertex after the bridge round to its start, over to `b`,
+/// round `b`, and back. The bridge replaces an edge of each, and the
+/// quadrilateral between those joins the two (the outline takes the hole
+/// in as a notch; two holes become one). Empty if no such loop keeps from
+/// crossing itself or keeps `a`'s orientation.
+Loop joinedLoops(const Loop& a, const Loop& b)
+{
+  std::size_t nearestA = 0, nearestB = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t k = 0; k < b.size(); ++k)
+      if ((a[i] - b[k]).squaredNorm() < nearest)
+      {
+        nearest = (a[i] - b[k]).squaredNorm();
+        nearestA = i;
+        nearestB = k;
+      }
+  const bool counterClockwise = signedArea(a) > 0.0;
+  Loop best;
+  double bestBridge = std::numeric_limits<double>::infinity();
+  // The bridge runs from a[i] to b[k] and from b[k - 1] to a[i + 1]: the
+  // nearest vertices at one end or the other of it.
+  for (const std::size_t i : { nearestA, nearestA + a.size() - 1 })
+    for (const std::size_t k : { nearestB, nearestB + 1 })
+    {
+      Loop joined;
+      joined.reserve(a.size() + b.size());
+      for (std::size_t j = 1; j <= a.size(); ++j)
+        joined.push_back(a[(i + j) % a.size()]);
+      for (std::size_t j = 0; j < b.size(); ++j)
+        joined.push_back(b[(k + j) % b.size()]);
+      const double bridge = (a[i % a.size()] - b[k % b.size()]).norm() +
+                            (b[(k + b.size() - 1) % b.size()] - a[(i + 1) % a.size()]).norm();
+      if (bridge < bestBridge && (signedArea(joined) > 0.0) == counterClockwise &&
+          !crossesItself(joined))
+      {
+        bestBridge = bridge;
+        best = std::move(joined);
+      }
+    }
+  return best;
+}
+
+/// The distance between the nearest vertices of two loops.
+double loopGap(const Loop& a, const Loop& b)
+{
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Vector2& x : a)
+    for (const Vector2& y : b)
+      nearest = std::min(nearest, (x - y).squaredNorm());
+  return std::sqrt(nearest);
+}
+
 /// A hole of the outline is a tunnel through the tissue, so the visual
 /// surface has at least as many tunnels (its genus) as the outline has
 /// holes, or the collision mesh's two sides could not be told apart on it
 /// (a hole whose rim closes on itself, a cap where a segmentation's
 /// tunnel was closed: the rim paths around it would leave a side in two
-/// pieces). Beyond the genus, the holes seen through least are filled.
-void keepHolesTheSurfaceHas(const TriangleMeshAdjacency& adjacency,
+/// pieces). Beyond the genus, the holes seen through least are joined to
+/// a kept hole or the outline near them, or else filled.
+constexpr double JoinedHoleSeeThrough = 0.5; ///< share of a hole seen through
+constexpr double JoinedHoleGap = 0.08;       ///< of the extent across the axis
+/// A hole of less area than the square of this share of the extent is a
+/// pit of the segmentation, not a slit or a notch: filled.
+constexpr double JoinedHoleSide = 0.02;
+int keepHolesTheSurfaceHas(const TriangleMeshAdjacency& adjacency,
   const ProjectedSurface& surface,
   double extent,
+  bool joinSeenThrough,
   std::vector<Loop>& loops)
 {
   if (loops.size() <= 1)
   {
-    return;
+    return 0;
   }
   const int genus = adjacency.closedSurfaceGenus();
   if (static_cast<int>(loops.size()) - 1 <= genus)
   {
-    return;
+    return 0;
   }
   std::vector<std::pair<double, std::size_t>> seen;
   for (std::size_t k = 1; k < loops.size(); ++k)
@@ -1712,11 +1775,41 @@ void keepHolesTheSurfaceHas(const TriangleMeshAdjacency& adjacency,
   std::stable_sort(
     seen.begin(), seen.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   std::vector<Loop> kept{ std::move(loops.front()) };
-  for (std::size_t i = 0; i < static_cast<std::size_t>(std::max(genus, 0)); ++i)
+  const std::size_t keep = static_cast<std::size_t>(std::max(genus, 0));
+  for (std::size_t i = 0; i < keep; ++i)
   {
     kept.push_back(std::move(loops[seen[i].second]));
   }
+  // A hole seen through that is no tunnel of its own is a part of a kept
+  // hole's tunnel (a tear's slit whose lips overlap in projection for a
+  // stretch shows as two holes) or a notch whose mouth an overlapping part
+  // closes in projection (a flap tear's flap lying on the body at its
+  // tip): joined to the nearest of the kept holes and the outline, so that
+  // the collision mesh spans no opening of the surface (its paths across
+  // would run round it and cross others). Holes seen through little, or
+  // far from all, or small, are caps (tunnels the segmentation closed) or
+  // pits: filled.
+  int joinedHoles = 0;
+  for (std::size_t i = keep; i < seen.size() && joinSeenThrough; ++i)
+  {
+    const Loop& hole = loops[seen[i].second];
+    if (seen[i].first < JoinedHoleSeeThrough ||
+        0.5 * std::abs(signedArea(hole)) < JoinedHoleSide * JoinedHoleSide * extent * extent)
+      continue;
+    std::size_t nearest = 0;
+    for (std::size_t k = 1; k < kept.size(); ++k)
+      nearest = loopGap(kept[k], hole) < loopGap(kept[nearest], hole) ? k : nearest;
+    if (loopGap(kept[nearest], hole) > JoinedHoleGap * extent)
+      continue;
+    Loop joined = joinedLoops(kept[nearest], hole);
+    if (!joined.empty())
+    {
+      kept[nearest] = std::move(joined);
+      ++joinedHoles;
+    }
+  }
   loops = std::move(kept);
+  return joinedHoles;
 }
 
 /// The outline and holes seen along the axis: from the silhouette edges,
@@ -1724,7 +1817,9 @@ void keepHolesTheSurfaceHas(const TriangleMeshAdjacency& adjacency,
 /// crosses itself (a rough surface; a tear's lips overlapping).
 std::vector<Loop> outlineAlongAxis(const TriangleMesh& visual,
   const ProjectedSurface& surface,
-  double extent)
+  double extent,
+  bool joinSeenThroughHoles,
+  int& joinedHoles)
 {
   bool tangled = false;
   const TriangleMeshAdjacency adjacency(visual);
@@ -1738,7 +1833,7 @@ std::vector<Loop> outlineAlongAxis(const TriangleMesh& visual,
   {
     throw InvalidInputError(nameOf(visual) + ": no outline seen along the thickness axis");
   }
-  keepHolesTheSurfaceHas(adjacency, surface, extent, loops);
+  joinedHoles = keepHolesTheSurfaceHas(adjacency, surface, extent, joinSeenThroughHoles, loops);
   return loops;
 }
 
@@ -1937,8 +2032,9 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
   const Vector3 n = surface.axis();
   const double extent = std::max(surface.extent().x(), surface.extent().y());
   report(progress, 0.2, "tracing the outline");
-  const std::vector<Loop> outline = outlineAlongAxis(visual, surface, extent);
   GeneratedCollisionMesh result;
+  const std::vector<Loop> outline =
+    outlineAlongAxis(visual, surface, extent, settings.joinSeenThroughHoles, result.joinedHoles);
   result.thicknessAxis = n;
   measureThickness(visual, surface, outline, settings.maximumThicknessRatio, result);
   auto halfThickness = [&](const Vector2& q, double& middle)

@@ -69,6 +69,12 @@ struct CollisionMeshSettings
   /// Name of the radius array written on the result.
   std::string radiusArrayName = "Radius";
   MidSurfaceMethod method = MidSurfaceMethod::Automatic;
+  /// Holes of the outline beyond the surface's genus (its tunnels) that are
+  /// seen through are joined to the kept hole or the outline near them: a
+  /// tear's slit seen as two holes where its lips overlap in projection, a
+  /// notch whose mouth a flap lying on the body closes. false: filled, as
+  /// the holes seen through little are (the collision mesh spans them).
+  bool joinSeenThroughHoles = true;
 };
 
 struct GeneratedCollisionMesh
@@ -76,6 +82,8 @@ struct GeneratedCollisionMesh
   /// The mid-surface, with a per-vertex radius array.
   TriangleMesh mesh;
   int borderVertexCount = 0;
+  /// Holes of the outline joined to another loop (joinSeenThroughHoles).
+  int joinedHoles = 0;
   /// The method used (never Automatic) and, for a band, the largest angle
   /// (radians) between its local thickness directions.
   MidSurfaceMethod method = MidSurfaceMethod::OneAxis;

@@ -123,11 +123,47 @@ nlohmann::json preparationMetadata(const TriangleMesh& visual,
     generated.thicknessAxis.x(), generated.thicknessAxis.y(), generated.thicknessAxis.z()
   };
   metadata["midSurface"] = generated.method == MidSurfaceMethod::Band ? "band" : "one axis";
+  if (generated.joinedHoles > 0)
+  {
+    metadata["joinedHoles"] = generated.joinedHoles;
+  }
   if (generated.method == MidSurfaceMethod::Band)
   {
     metadata["thicknessTurnDegrees"] = generated.thicknessTurn * 180.0 / M_PI;
   }
   return metadata;
+}
+
+/// bind(settings), and where holes of the outline were joined
+/// (CollisionMeshSettings::joinSeenThroughHoles) and that fails, bind with
+/// them filled: a joined hole can leave the collision mesh a neck one
+/// vertex wide between two lobes of a rough segmentation. The first error
+/// when both fail.
+template <typename Bind>
+void bindJoiningHoles(const Bind& bind,
+  const CollisionMeshSettings& settings,
+  const GeneratedCollisionMesh& generated)
+{
+  try
+  {
+    bind(settings);
+  }
+  catch (const InvalidInputError&)
+  {
+    if (generated.joinedHoles == 0 || !settings.joinSeenThroughHoles)
+      throw;
+    CollisionMeshSettings filled = settings;
+    filled.joinSeenThroughHoles = false;
+    try
+    {
+      bind(filled);
+      return;
+    }
+    catch (const InvalidInputError&)
+    {
+    }
+    throw;
+  }
 }
 
 /// The collision mid-surface and the binding to it. Automatic method: when
@@ -159,7 +195,7 @@ void bindToMidSurface(const TriangleMesh& visual,
   };
   try
   {
-    bind(settings.collision);
+    bindJoiningHoles(bind, settings.collision, generated);
   }
   catch (const InvalidInputError&)
   {

@@ -504,8 +504,8 @@ std::vector<std::pair<double, int>> nearestVisualVertices(const TriangleMesh& vi
 
 /// The claim of border collision vertex v on the visual rim (5.2.1): its
 /// candidates, closest first. Returns why it has none within reach, or an
-/// empty text. `reach`: `thinnessFactor` radii, or up to twice that within
-/// half the vertex's mean collision edge (see pairCollisionVertices).
+/// empty text. `reach`: `thinnessFactor` radii, or more within half the
+/// vertex's mean collision edge (see pairCollisionVertices).
 std::string claimRimPoint(const TriangleMesh& visual,
   const TriangleMeshAdjacency& visualAdjacency,
   const TriangleBvh& visualBvh,
@@ -574,7 +574,7 @@ std::string claimRimPoint(const TriangleMesh& visual,
            ", then " + std::to_string(claim.candidates.front().first) +
            " to the closest visual vertex), more than " + std::to_string(reach) + " (" +
            std::to_string(thinnessFactor) + " radii of " + std::to_string(radius) +
-           ", or up to twice that within half its mean collision edge)";
+           ", or more within half its mean collision edge)";
   }
   return {};
 }
@@ -852,13 +852,18 @@ std::vector<PairedPoints> pairCollisionVertices(const TriangleMesh& visual,
         {
           return; // one visual vertex for both sides
         }
+        // The ray outward across the border leaves the surface at the
+        // tissue's own rim, however thin the tissue is where the vertex
+        // stands: a segmented rim thinning to an edge puts it tens of radii
+        // out (a sheet's or a cartilage's rim). It still belongs to the
+        // vertex while nearer than half way to its neighbours.
         errors[c] = claimRimPoint(visual,
           visualAdjacency,
           visualBvh,
           v,
           origin,
           outward[v],
-          reach,
+          std::max(reach, halfMeanEdge[v]),
           radii[v],
           settings.thinnessFactor,
           claim);

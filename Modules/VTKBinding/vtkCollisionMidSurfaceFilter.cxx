@@ -46,10 +46,12 @@ int vtkCollisionMidSurfaceFilter::RequestData(vtkInformation*,
   this->LastErrorMessage.clear();
   this->HausdorffDistance = 0.0;
   this->ThicknessRatio = 0.0;
+  this->JoinedHoles = 0;
   output->Initialize();
   thintissue::CollisionMeshSettings settings;
   settings.vertexCount = this->VertexCount;
   settings.maximumThicknessRatio = this->MaximumThicknessRatio;
+  settings.joinSeenThroughHoles = this->JoinSeenThroughHoles;
   settings.radiusArrayName = this->RadiusArrayName != nullptr ? this->RadiusArrayName : "";
   const thintissue::GenerationProgress progress = [this](double fraction, const char* stage)
   {
@@ -73,6 +75,7 @@ int vtkCollisionMidSurfaceFilter::RequestData(vtkInformation*,
     output->ShallowCopy(thintissue::toPolyData(generated.mesh));
     this->HausdorffDistance = generated.hausdorffDistance;
     this->ThicknessRatio = generated.thicknessRatio;
+    this->JoinedHoles = generated.joinedHoles;
     addFieldValue(output, "HausdorffDistance", &generated.hausdorffDistance, 1);
     addFieldValue(output, "ThicknessRatio", &generated.thicknessRatio, 1);
     addFieldValue(output, "ThicknessAxis", generated.thicknessAxis.data(), 3);
@@ -104,6 +107,8 @@ void vtkCollisionMidSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
      << indent << "RadiusArrayName: " << (this->RadiusArrayName ? this->RadiusArrayName : "(none)")
      << "\n"
      << indent << "HausdorffDistance: " << this->HausdorffDistance << "\n"
+     << indent << "JoinSeenThroughHoles: " << (this->JoinSeenThroughHoles ? "on" : "off") << "\n"
      << indent << "ThicknessRatio: " << this->ThicknessRatio << "\n"
+     << indent << "JoinedHoles: " << this->JoinedHoles << "\n"
      << indent << "LastErrorMessage: " << this->LastErrorMessage << "\n";
 }

@@ -51,9 +51,21 @@ public:
   vtkGetStringMacro(RadiusArrayName);
   ///@}
 
+  ///@{
+  /// Join holes of the outline beyond the surface's tunnels that are seen
+  /// through to the hole or the outline near them (a slit seen as two
+  /// holes, a notch a flap closes in projection; default on). Off: the
+  /// mid-surface spans them.
+  vtkSetMacro(JoinSeenThroughHoles, bool);
+  vtkGetMacro(JoinSeenThroughHoles, bool);
+  vtkBooleanMacro(JoinSeenThroughHoles, bool);
+  ///@}
+
   /// Measured on the last run (0 before one, or after a failure).
   vtkGetMacro(HausdorffDistance, double);
   vtkGetMacro(ThicknessRatio, double);
+  /// Holes the last run joined to another loop of the outline.
+  vtkGetMacro(JoinedHoles, int);
 
   /// Empty after a successful run.
   const char* GetLastErrorMessage() const { return this->LastErrorMessage.c_str(); }
@@ -67,8 +79,10 @@ protected:
   int VertexCount = 85;
   double MaximumThicknessRatio = 0.35;
   char* RadiusArrayName = nullptr;
+  bool JoinSeenThroughHoles = true;
   double HausdorffDistance = 0.0;
   double ThicknessRatio = 0.0;
+  int JoinedHoles = 0;
   std::string LastErrorMessage;
 
 private:

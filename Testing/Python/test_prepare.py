@@ -30,6 +30,9 @@ class CollisionMidSurfaceTest(unittest.TestCase):
         self.assertGreater(hausdorff, 0.0)
         self.assertLess(hausdorff, 1.0)  # half the sheet's thickness of 2 mm
         self.assertIn("triangulating", stages)
+        # The sheet's outline has no hole: nothing to join.
+        self.assertTrue(generator.GetJoinSeenThroughHoles())
+        self.assertEqual(generator.GetJoinedHoles(), 0)
 
         binding = thintissue.vtkVisualCollisionBindingFilter()
         binding.SetInputConnection(0, sheet.GetOutputPort(0))
