@@ -1684,33 +1684,47 @@ double seeThroughFraction(const ProjectedSurface& surface, const Loop& hole, dou
   return static_cast<double>(empty) / static_cast<double>(lattice.size());
 }
 
-/// Loop `b` joined to loop `a` across the nearest of their vertices (both
-/// with the tissue on their left: the outline counter-clockwise, holes
-/// clockwise, so that where they face each other they run opposite ways):
-/// `a` from the vertex after the bridge round to its start, over to `b`,
-/// round `b`, and back. The bridge replaces an edge of each, and the
-/// quadrilateral between those joins the two (the outline takes the hole
-/// in as a notch; two holes become one). Empty if no such loop keeps from
-/// crossing itself or keeps `a`'s orientation.
-Loop joinedLoops(const Loop& a, const Loop& b)
+/// The nearest vertices of two loops (indices) and their distance.
+struct NearestVertices
 {
-  std::size_t nearestA = 0, nearestB = 0;
-  double nearest = std::numeric_limits<double>::infinity();
+  std::size_t a = 0;
+  std::size_t b = 0;
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+NearestVertices nearestVertices(const Loop& a, const Loop& b)
+{
+  NearestVertices nearest;
+  double squared = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < a.size(); ++i)
     for (std::size_t k = 0; k < b.size(); ++k)
-      if ((a[i] - b[k]).squaredNorm() < nearest)
+      if ((a[i] - b[k]).squaredNorm() < squared)
       {
-        nearest = (a[i] - b[k]).squaredNorm();
-        nearestA = i;
-        nearestB = k;
+        squared = (a[i] - b[k]).squaredNorm();
+        nearest.a = i;
+        nearest.b = k;
       }
+  nearest.distance = std::sqrt(squared);
+  return nearest;
+}
+
+/// Loop `b` joined to loop `a` across their nearest vertices (both with the
+/// tissue on their left: the outline counter-clockwise, holes clockwise,
+/// so that where they face each other they run opposite ways): `a` from
+/// the vertex after the bridge round to its start, over to `b`, round `b`,
+/// and back. The bridge replaces an edge of each, and the quadrilateral
+/// between those joins the two (the outline takes the hole in as a notch;
+/// two holes become one). Empty if no such loop keeps from crossing itself
+/// or keeps `a`'s orientation.
+Loop joinedLoops(const Loop& a, const Loop& b, const NearestVertices& nearest)
+{
   const bool counterClockwise = signedArea(a) > 0.0;
   Loop best;
   double bestBridge = std::numeric_limits<double>::infinity();
   // The bridge runs from a[i] to b[k] and from b[k - 1] to a[i + 1]: the
   // nearest vertices at one end or the other of it.
-  for (const std::size_t i : { nearestA, nearestA + a.size() - 1 })
-    for (const std::size_t k : { nearestB, nearestB + 1 })
+  for (const std::size_t i : { nearest.a, nearest.a + a.size() - 1 })
+    for (const std::size_t k : { nearest.b, nearest.b + 1 })
     {
       Loop joined;
       joined.reserve(a.size() + b.size());
@@ -1730,15 +1744,11 @@ Loop joinedLoops(const Loop& a, const Loop& b)
   return best;
 }
 
-/// The distance between the nearest vertices of two loops.
-double loopGap(const Loop& a, const Loop& b)
-{
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const Vector2& x : a)
-    for (const Vector2& y : b)
-      nearest = std::min(nearest, (x - y).squaredNorm());
-  return std::sqrt(nearest);
-}
+constexpr double JoinedHoleSeeThrough = 0.5; ///< share of a hole seen through
+constexpr double JoinedHoleGap = 0.08;       ///< of the extent across the axis
+/// A hole of less area than the square of this share of the extent is a
+/// pit of the segmentation, not a slit or a notch: filled.
+constexpr double JoinedHoleSide = 0.02;
 
 /// A hole of the outline is a tunnel through the tissue, so the visual
 /// surface has at least as many tunnels (its genus) as the outline has
@@ -1746,12 +1756,8 @@ double loopGap(const Loop& a, const Loop& b)
 /// (a hole whose rim closes on itself, a cap where a segmentation's
 /// tunnel was closed: the rim paths around it would leave a side in two
 /// pieces). Beyond the genus, the holes seen through least are joined to
-/// a kept hole or the outline near them, or else filled.
-constexpr double JoinedHoleSeeThrough = 0.5; ///< share of a hole seen through
-constexpr double JoinedHoleGap = 0.08;       ///< of the extent across the axis
-/// A hole of less area than the square of this share of the extent is a
-/// pit of the segmentation, not a slit or a notch: filled.
-constexpr double JoinedHoleSide = 0.02;
+/// a kept hole or the outline near them, or else filled. Returns how many
+/// were joined.
 int keepHolesTheSurfaceHas(const TriangleMeshAdjacency& adjacency,
   const ProjectedSurface& surface,
   double extent,
@@ -1796,15 +1802,23 @@ int keepHolesTheSurfaceHas(const TriangleMeshAdjacency& adjacency,
     if (seen[i].first < JoinedHoleSeeThrough ||
         0.5 * std::abs(signedArea(hole)) < JoinedHoleSide * JoinedHoleSide * extent * extent)
       continue;
-    std::size_t nearest = 0;
+    std::size_t to = 0;
+    NearestVertices nearest = nearestVertices(kept[0], hole);
     for (std::size_t k = 1; k < kept.size(); ++k)
-      nearest = loopGap(kept[k], hole) < loopGap(kept[nearest], hole) ? k : nearest;
-    if (loopGap(kept[nearest], hole) > JoinedHoleGap * extent)
+    {
+      const NearestVertices other = nearestVertices(kept[k], hole);
+      if (other.distance < nearest.distance)
+      {
+        to = k;
+        nearest = other;
+      }
+    }
+    if (nearest.distance > JoinedHoleGap * extent)
       continue;
-    Loop joined = joinedLoops(kept[nearest], hole);
+    Loop joined = joinedLoops(kept[to], hole, nearest);
     if (!joined.empty())
     {
-      kept[nearest] = std::move(joined);
+      kept[to] = std::move(joined);
       ++joinedHoles;
     }
   }

@@ -56,6 +56,22 @@ std::vector<Eigen::Matrix3d> childInverses(const CollisionTriangleSplit& split)
   return inverses;
 }
 
+/// The region's triangles grouped by piece: `members` lists them piece by
+/// piece, piece p from pieceStart[p] (given each piece's count in
+/// pieceStart[p + 1] and each triangle's piece in triangleIn).
+template <typename Buffers>
+void groupByPiece(Buffers& buffers)
+{
+  auto& pieceStart = buffers.pieceStart;
+  for (std::size_t p = 1; p < pieceStart.size(); ++p)
+    pieceStart[p] += pieceStart[p - 1];
+  buffers.members.resize(buffers.triangleIn.size());
+  auto& cursor = buffers.pieceOf; // scratch
+  cursor.assign(pieceStart.begin(), pieceStart.end() - 1);
+  for (std::size_t i = 0; i < buffers.triangleIn.size(); ++i)
+    buffers.members[cursor[buffers.triangleIn[i]]++] = static_cast<int>(i);
+}
+
 } // namespace
 
 void CuttableVisualMesh::rebindSplitRegions(CutContext& context)
@@ -337,16 +353,8 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
       centroids[piece] += region.planar[v];
   }
   const std::size_t pieces = centroids.size();
-  for (std::size_t p = 0; p < pieces; ++p)
-    pieceStart[p + 1] += pieceStart[p];
-  auto& members = buffers.members;
-  members.resize(triangleCount);
-  {
-    auto& cursor = buffers.pieceOf; // reused: its roots are read no more
-    cursor.assign(pieceStart.begin(), pieceStart.end() - 1);
-    for (std::size_t i = 0; i < triangleCount; ++i)
-      members[cursor[triangleIn[i]]++] = static_cast<int>(i);
-  }
+  groupByPiece(buffers);
+  const std::vector<int>& members = buffers.members;
   const std::vector<Eigen::Matrix3d> inverses = childInverses(split);
   markRebindable(region, split.parent, onCut, buffers);
   for (std::size_t p = 0; p < pieces; ++p)
@@ -388,12 +396,9 @@ bool CuttableVisualMesh::locatePieces(RegionCut& region,
   const CutContext& context)
 {
   const CollisionTriangleSplit& split = context.cut->splits[region.split];
-  const std::array<Vector2, 3>& frame = region.frame;
-  const double margin = OnLineTolerance * std::max({ (frame[1] - frame[0]).norm(),
-                                            (frame[2] - frame[1]).norm(),
-                                            (frame[0] - frame[2]).norm() });
+  const double margin = OnLineTolerance * frameScale(region.frame);
   PieceLocator locator;
-  if (!pieceLocator(region, split, context, margin, locator))
+  if (!pieceLocator(region, split, margin, locator))
     return false;
   const int pieces = static_cast<int>(split.children.size());
   const std::size_t triangleCount = region.newTriangles.size();
@@ -420,14 +425,8 @@ bool CuttableVisualMesh::locatePieces(RegionCut& region,
     triangleIn[i] = in;
     ++pieceStart[in + 1];
   }
-  for (int c = 0; c < pieces; ++c)
-    pieceStart[c + 1] += pieceStart[c];
-  auto& members = buffers.members;
-  members.resize(triangleCount);
-  auto& cursor = buffers.pieceOf;
-  cursor.assign(pieceStart.begin(), pieceStart.end() - 1);
-  for (std::size_t i = 0; i < triangleCount; ++i)
-    members[cursor[triangleIn[i]]++] = static_cast<int>(i);
+  groupByPiece(buffers);
+  const std::vector<int>& members = buffers.members;
   const std::vector<Eigen::Matrix3d> inverses = childInverses(split);
   markRebindable(region, split.parent, onCut, buffers);
   for (int c = 0; c < pieces; ++c)
@@ -444,50 +443,35 @@ bool CuttableVisualMesh::locatePieces(RegionCut& region,
 // The crossings of the split in the region's plane (the lines its traced
 // paths run along) and, per combination of sides of them, the collision
 // piece inside all its crossings there (-1: none or several). False where
-// a piece's side inside the parent is no traced crossing, or a line or a
-// piece is degenerate.
+// a line or a piece is degenerate.
 bool CuttableVisualMesh::pieceLocator(const RegionCut& region,
   const CollisionTriangleSplit& split,
-  const CutContext& context,
   double margin,
   PieceLocator& locator) const
 {
   const std::array<Vector2, 3>& frame = region.frame;
   const int pieces = static_cast<int>(split.children.size());
-  // Per piece: the sides (bit per line) it needs, and which lines it needs.
-  std::array<std::pair<unsigned, unsigned>, PieceLocator::MaxPieces> needs{};
   if (pieces > PieceLocator::MaxPieces || region.crossings.size() > PieceLocator::MaxLines)
     return false;
+  // Per piece: the lines it lies beside (bit per line), and on which side.
+  std::array<std::pair<unsigned, unsigned>, PieceLocator::MaxPieces> needs{};
   locator.lineCount = static_cast<int>(region.crossings.size());
   for (int l = 0; l < locator.lineCount; ++l)
   {
-    const auto& planar = region.crossings[l].planar;
-    const Vector2 along = planar[1] - planar[0];
+    const CrossingPath& crossing = region.crossings[l];
+    const Vector2 along = crossing.planar[1] - crossing.planar[0];
     const double length = along.norm();
     if (!(length > margin))
       return false;
-    locator.from[l] = planar[0];
+    locator.from[l] = crossing.planar[0];
     locator.normal[l] = Vector2(-along.y(), along.x()) / length;
-  }
-  for (int c = 0; c < pieces; ++c)
-  {
-    const auto& corners = split.childCorners[c];
-    const Vector3 middle = (corners[0] + corners[1] + corners[2]) / 3.0;
-    const Vector2 inner = middle[0] * frame[0] + middle[1] * frame[1] + middle[2] * frame[2];
-    const Triangle& piece = context.collision->triangles()[split.children[c]];
-    for (int k = 0; k < 3; ++k)
+    for (const int c : crossing.pieces)
     {
-      if (alongParentSide(corners[k], corners[(k + 1) % 3]))
+      if (c < 0)
         continue;
-      std::array<int, 2> ends{ { context.root(piece[k]), context.root(piece[(k + 1) % 3]) } };
-      if (ends[0] > ends[1])
-        std::swap(ends[0], ends[1]);
-      const auto crossing = std::find_if(region.crossings.begin(),
-        region.crossings.end(),
-        [&](const CrossingPath& other) { return other.ends == ends; });
-      if (crossing == region.crossings.end())
-        return false;
-      const int l = static_cast<int>(crossing - region.crossings.begin());
+      const auto& corners = split.childCorners[c];
+      const Vector3 middle = (corners[0] + corners[1] + corners[2]) / 3.0;
+      const Vector2 inner = middle[0] * frame[0] + middle[1] * frame[1] + middle[2] * frame[2];
       const double d = locator.normal[l].dot(inner - locator.from[l]);
       if (std::abs(d) <= margin)
         return false;

@@ -352,6 +352,14 @@ void groupLinks(const std::vector<std::pair<int, int>>& links,
   offsets[0] = 0;
 }
 
+/// Whether the segment between two points given in a triangle's
+/// barycentric coordinates runs along one of its sides.
+bool alongParentSide(const Vector3& p, const Vector3& q)
+{
+  return (p[0] == 0.0 && q[0] == 0.0) || (p[1] == 0.0 && q[1] == 0.0) ||
+         (p[2] == 0.0 && q[2] == 0.0);
+}
+
 int cornerIndex(const Vector3& barycentric)
 {
   for (int k = 0; k < 3; ++k)
@@ -882,10 +890,16 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
           std::swap(crossing.ends[0], crossing.ends[1]);
           std::swap(crossing.barycentric[0], crossing.barycentric[1]);
         }
-        if (std::none_of(crossings.begin(),
-              crossings.end(),
-              [&](const CrossingPath& other) { return other.ends == crossing.ends; }))
+        const auto same = std::find_if(crossings.begin(),
+          crossings.end(),
+          [&](const CrossingPath& other) { return other.ends == crossing.ends; });
+        if (same != crossings.end())
+          same->pieces[1] = static_cast<int>(c);
+        else
+        {
+          crossing.pieces[0] = static_cast<int>(c);
           crossings.push_back(std::move(crossing));
+        }
       }
     }
     for (int side = 0; side < 2; ++side)
@@ -911,8 +925,7 @@ void CuttableVisualMesh::traceRegion(RegionCut& region,
 {
   const CollisionTriangleSplit& split = context.cut->splits[region.split];
   const std::array<Vector2, 3>& frame = region.frame;
-  const double scale = std::max(
-    { (frame[1] - frame[0]).norm(), (frame[2] - frame[1]).norm(), (frame[0] - frame[2]).norm() });
+  const double scale = frameScale(frame);
   // Local vertices (RegionWorker::localIndex), the triangles in them; a
   // region has fewer vertices than triangles (plus its border).
   std::vector<Triangle>& triangles = region.localTriangles;

@@ -395,7 +395,6 @@ private:
   struct PieceLocator;
   bool pieceLocator(const RegionCut& region,
     const CollisionTriangleSplit& split,
-    const CutContext& context,
     double margin,
     PieceLocator& locator) const;
   bool locatePieces(RegionCut& region,

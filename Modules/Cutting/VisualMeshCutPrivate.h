@@ -18,12 +18,12 @@ namespace thintissue
 /// triangle's longest side in its plane).
 constexpr double OnLineTolerance = 1e-7;
 
-/// Whether the segment between two points given in a triangle's
-/// barycentric coordinates runs along one of its sides.
-inline bool alongParentSide(const Vector3& p, const Vector3& q)
+/// The longest side of a triangle's corners in its plane (the scale of
+/// OnLineTolerance).
+inline double frameScale(const std::array<Vector2, 3>& frame)
 {
-  return (p[0] == 0.0 && q[0] == 0.0) || (p[1] == 0.0 && q[1] == 0.0) ||
-         (p[2] == 0.0 && q[2] == 0.0);
+  return std::max(
+    { (frame[1] - frame[0]).norm(), (frame[2] - frame[1]).norm(), (frame[0] - frame[2]).norm() });
 }
 
 /// The collision pieces of a split in its region's plane: its crossings'
@@ -65,6 +65,8 @@ struct CuttableVisualMesh::CrossingPath
   /// their barycentric coordinates in the parent.
   std::array<int, 2> ends{ { -1, -1 } };
   std::array<Vector3, 2> barycentric{ { Vector3::Zero(), Vector3::Zero() } };
+  /// The split's pieces on either side of it (indices into its children).
+  std::array<int, 2> pieces{ { -1, -1 } };
   SurfacePath path; ///< in visual vertices before re-meshing
   /// Its ends in the region's plane.
   std::array<Vector2, 2> planar{ { Vector2::Zero(), Vector2::Zero() } };

@@ -325,10 +325,14 @@ TEST(TissueCutterProperty, RandomSweepsCutTheCleavedMeniscusVisualMeshConsistent
   sweepTornMeniscusVisually(MeniscusTearType::HorizontalCleavage, 5514u);
 }
 
-// The region stages on several threads (forced, whatever the regions'
-// size) cut as on one, bit for bit, over the cleaved meniscus (junctions,
-// clefts) and the sheet: the simulator replays sessions exactly.
-TEST(TissueCutterProperty, SeveralThreadsCutBitForBitAsOne)
+namespace
+{
+
+/// 80 random sweeps over the cleaved meniscus (junctions, clefts) and the
+/// sheet, each cutter against a twin (RandomSweeps::CompareWith); `check`
+/// looks at each model's sweeps afterwards.
+template <typename Check>
+void sweepAgainstTwin(RandomSweeps::Twin twin, unsigned seed, int episodes, const Check& check)
 {
   MeniscusParameters parameters;
   parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
@@ -337,34 +341,36 @@ TEST(TissueCutterProperty, SeveralThreadsCutBitForBitAsOne)
   for (const TissueModel* model : { static_cast<const TissueModel*>(&meniscus), &sheet })
   {
     const VisualCollisionBinding binding = bindVisualToCollision(model->visual, model->collision);
-    RandomSweeps sweeps(*model, 6161u);
+    RandomSweeps sweeps(*model, seed);
     sweeps.Binding = &binding;
-    sweeps.CompareWith = RandomSweeps::Twin::OneThread;
-    sweeps.run(4, 20);
-    EXPECT_EQ(sweeps.Sweeps, 80) << model->name;
+    sweeps.CompareWith = twin;
+    sweeps.run(episodes, 20);
+    EXPECT_EQ(sweeps.Sweeps, 20 * episodes) << model->name;
+    check(sweeps, model->name);
   }
 }
 
+} // namespace
+
+// The region stages on several threads (forced, whatever the regions'
+// size) cut as on one, bit for bit: the simulator replays sessions exactly.
+TEST(TissueCutterProperty, SeveralThreadsCutBitForBitAsOne)
+{
+  sweepAgainstTwin(
+    RandomSweeps::Twin::OneThread, 6161u, 4, [](const RandomSweeps&, const std::string&) {});
+}
+
+// VisualCutSettings::piecesByLocation: where a split region lies in its
+// plane without a fold, the pieces found by location are the union-find's,
+// so every sweep ends with the same visual mesh, binding, regions and
+// embedding as a twin that takes the union-find; most regions are located.
 TEST(TissueCutterProperty, PiecesByLocationAreTheUnionFindPieces)
 {
-  // VisualCutSettings::piecesByLocation: where a split region lies in its
-  // plane without a fold, the pieces found by location are the union-find's,
-  // so every sweep ends with the same visual mesh, binding, regions and
-  // embedding as a twin that takes the union-find; most regions are located.
-  MeniscusParameters parameters;
-  parameters.tear = defaultMeniscusTear(MeniscusTearType::HorizontalCleavage);
-  const MeniscusModel meniscus = makeMeniscus(parameters);
-  const TissueModel sheet = makeThinSheet(ThinSheetParameters{});
-  for (const TissueModel* model : { static_cast<const TissueModel*>(&meniscus), &sheet })
-  {
-    const VisualCollisionBinding binding = bindVisualToCollision(model->visual, model->collision);
-    RandomSweeps sweeps(*model, 7272u);
-    sweeps.Binding = &binding;
-    sweeps.CompareWith = RandomSweeps::Twin::UnionFindPieces;
-    sweeps.run(4 * sweepScale(), 20);
-    EXPECT_EQ(sweeps.Sweeps, 80 * sweepScale()) << model->name;
-    EXPECT_GT(sweeps.RegionsLocated, sweeps.SplitRegions / 2) << model->name;
-  }
+  sweepAgainstTwin(RandomSweeps::Twin::UnionFindPieces,
+    7272u,
+    4 * sweepScale(),
+    [](const RandomSweeps& sweeps, const std::string& name)
+    { EXPECT_GT(sweeps.RegionsLocated, sweeps.SplitRegions / 2) << name; });
 }
 
 namespace
