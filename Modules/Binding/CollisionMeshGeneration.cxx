@@ -939,7 +939,8 @@ std::vector<Vector2> latticeInside(const std::vector<Loop>& loops,
   double h,
   double margin,
   const ProjectedSurface* tissue = nullptr,
-  double thinnest = 0.0)
+  double thinnest = 0.0,
+  double phase = 0.0)
 {
   Vector2 low(Infinity, Infinity);
   Vector2 high(-Infinity, -Infinity);
@@ -949,6 +950,10 @@ std::vector<Vector2> latticeInside(const std::vector<Loop>& loops,
     high = high.cwiseMax(p);
   }
   const double rowHeight = h * std::sqrt(3.0) / 2.0;
+  // The phase moves the lattice by its share of the lattice vector one and
+  // a half spacings along the rows and one row across: 0 and 1 give the
+  // same points, 1/3 and 2/3 the centres of its triangles.
+  low -= Vector2(1.5 * h, rowHeight) * phase;
   std::vector<std::pair<double, Vector2>> points;
   const int rows = static_cast<int>((high.y() - low.y()) / rowHeight) + 1;
   const int columns = static_cast<int>((high.x() - low.x()) / h) + 1;
@@ -1436,7 +1441,8 @@ std::vector<Vector2> interiorLattice(const ProjectedSurface& surface,
   const std::vector<Loop>& borders,
   int interiorCount,
   double extent,
-  double largestThickness)
+  double largestThickness,
+  double phase)
 {
   double perimeter = 0.0;
   std::size_t count = 0;
@@ -1455,8 +1461,12 @@ std::vector<Vector2> interiorLattice(const ProjectedSurface& surface,
   for (int iteration = 0; iteration < 60; ++iteration)
   {
     const double h = std::sqrt(small * large);
-    std::vector<Vector2> points = latticeInside(
-      borders, h, 0.45 * std::min(h, borderSpacing), &surface, ThinnestShare * largestThickness);
+    std::vector<Vector2> points = latticeInside(borders,
+      h,
+      0.45 * std::min(h, borderSpacing),
+      &surface,
+      ThinnestShare * largestThickness,
+      phase);
     if (static_cast<int>(points.size()) >= interiorCount)
     {
       small = h;
@@ -2050,6 +2060,7 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
   const std::vector<Loop> outline =
     outlineAlongAxis(visual, surface, extent, settings.joinSeenThroughHoles, result.joinedHoles);
   result.thicknessAxis = n;
+  result.latticePhase = settings.latticePhase;
   measureThickness(visual, surface, outline, settings.maximumThicknessRatio, result);
   auto halfThickness = [&](const Vector2& q, double& middle)
   { return halfThicknessAt(surface, q, middle); };
@@ -2086,8 +2097,8 @@ GeneratedCollisionMesh oneAxisMidSurface(const TriangleMesh& visual,
   // points added in bays taken from it).
   report(progress, 0.4, "filling the inside");
   const int interiorCount = vertexCount - placed;
-  std::vector<Vector2> interior =
-    interiorLattice(surface, borders, interiorCount, extent, result.largestThickness);
+  std::vector<Vector2> interior = interiorLattice(
+    surface, borders, interiorCount, extent, result.largestThickness, settings.latticePhase);
   if (static_cast<int>(interior.size()) < interiorCount)
   {
     throw InvalidInputError(nameOf(visual) + ": the outline leaves no room for " +
@@ -2162,6 +2173,10 @@ GeneratedCollisionMesh makeCollisionMidSurface(const TriangleMesh& visual,
   if (!(settings.maximumThicknessRatio > 0.0))
   {
     throw InvalidInputError("collision mesh generation: the thickness ratio must be positive");
+  }
+  if (!(settings.latticePhase >= 0.0 && settings.latticePhase <= 1.0))
+  {
+    throw InvalidInputError("collision mesh generation: the lattice phase must lie in [0, 1]");
   }
   checkVisual(visual);
 

@@ -75,6 +75,9 @@ struct CollisionMeshSettings
   /// notch whose mouth a flap lying on the body closes. false: filled, as
   /// the holes seen through little are (the collision mesh spans them).
   bool joinSeenThroughHoles = true;
+  /// Where the inner lattice lies, in [0, 1): a shift along its rows and
+  /// across them by this share of its spacing.
+  double latticePhase = 0.0;
 };
 
 struct GeneratedCollisionMesh
@@ -84,6 +87,8 @@ struct GeneratedCollisionMesh
   int borderVertexCount = 0;
   /// Holes of the outline joined to another loop (joinSeenThroughHoles).
   int joinedHoles = 0;
+  /// The inner lattice's phase (CollisionMeshSettings::latticePhase).
+  double latticePhase = 0.0;
   /// The method used (never Automatic) and, for a band, the largest angle
   /// (radians) between its local thickness directions.
   MidSurfaceMethod method = MidSurfaceMethod::OneAxis;

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -127,6 +128,10 @@ nlohmann::json preparationMetadata(const TriangleMesh& visual,
   {
     metadata["joinedHoles"] = generated.joinedHoles;
   }
+  if (generated.method == MidSurfaceMethod::OneAxis)
+  {
+    metadata["latticePhase"] = generated.latticePhase;
+  }
   if (generated.method == MidSurfaceMethod::Band)
   {
     metadata["thicknessTurnDegrees"] = generated.thicknessTurn * 180.0 / M_PI;
@@ -134,48 +139,71 @@ nlohmann::json preparationMetadata(const TriangleMesh& visual,
   return metadata;
 }
 
-/// bind(settings), and where holes of the outline were joined
-/// (CollisionMeshSettings::joinSeenThroughHoles) and that fails, bind with
-/// them filled: a joined hole can leave the collision mesh a neck one
-/// vertex wide between two lobes of a rough segmentation. The first error
-/// when both fail.
-template <typename Bind>
-void bindJoiningHoles(const Bind& bind,
-  const CollisionMeshSettings& settings,
-  const GeneratedCollisionMesh& generated)
+/// The collision mid-surfaces tried in turn until one binds, and the
+/// errors of those refused (each named by what it varied).
+class MidSurfaceAttempts
 {
-  try
+public:
+  template <typename Bind>
+  bool attempt(const Bind& bind, const CollisionMeshSettings& settings, const std::string& what)
   {
-    bind(settings);
-  }
-  catch (const InvalidInputError&)
-  {
-    if (generated.joinedHoles == 0 || !settings.joinSeenThroughHoles)
-      throw;
-    CollisionMeshSettings filled = settings;
-    filled.joinSeenThroughHoles = false;
     try
     {
-      bind(filled);
-      return;
+      bind(settings);
+      return true;
     }
-    catch (const InvalidInputError&)
+    catch (const InvalidInputError& error)
     {
+      if (!first_)
+        first_ = std::current_exception();
+      refused_.push_back(what + ": " + error.what());
+      return false;
     }
-    throw;
   }
-}
 
-/// The collision mid-surface and the binding to it. Automatic method: when
-/// the binding refuses the one-axis mid-surface of an elongated tissue (a
-/// band whose thickness direction turns: its paths cross), the band's
-/// mid-surface is bound instead; the first error when that fails too.
+  /// attempt(settings), and where holes of the outline were joined
+  /// (CollisionMeshSettings::joinSeenThroughHoles) and that fails, with
+  /// them filled: a joined hole can leave the collision mesh a neck one
+  /// vertex wide between two lobes of a rough segmentation.
+  template <typename Bind>
+  bool attemptJoiningHoles(const Bind& bind,
+    const CollisionMeshSettings& settings,
+    const GeneratedCollisionMesh& generated,
+    const std::string& what)
+  {
+    if (attempt(bind, settings, what))
+      return true;
+    if (generated.joinedHoles == 0 || !settings.joinSeenThroughHoles)
+      return false;
+    CollisionMeshSettings filled = settings;
+    filled.joinSeenThroughHoles = false;
+    return attempt(bind, filled, what + ", seen-through holes filled");
+  }
+
+  [[noreturn]] void rethrowFirst() const { std::rethrow_exception(first_); }
+  const std::vector<std::string>& refused() const { return refused_; }
+
+private:
+  std::exception_ptr first_;
+  std::vector<std::string> refused_;
+};
+
+/// The collision mid-surface and the binding to it, the settings' first.
+/// Automatic method: when the binding refuses the one-axis mid-surface of
+/// an elongated tissue (a band whose thickness direction turns: its paths
+/// cross), the band's mid-surface is bound instead. Then the one-axis
+/// lattice moved by a third, a half and two thirds of a cell: on a rough
+/// segmentation a narrow strip can fall between two rows of the lattice (a
+/// row of sliver collision triangles whose side paths cross) where the
+/// lattice moved covers it. The first error when all fail; the refused
+/// ones in `refused`.
 void bindToMidSurface(const TriangleMesh& visual,
   const TissuePreparationSettings& settings,
   const GenerationProgress& collisionProgress,
   const BindingProgress& bindingProgress,
   GeneratedCollisionMesh& generated,
-  TissueBundle& bundle)
+  TissueBundle& bundle,
+  std::vector<std::string>& refused)
 {
   VisualCollisionBindingSettings bindingSettings = settings.binding;
   bindingSettings.radiusArrayName = settings.collision.radiusArrayName;
@@ -193,31 +221,41 @@ void bindToMidSurface(const TriangleMesh& visual,
       throw GenerationAbortedError(aborted.what());
     }
   };
-  try
+  MidSurfaceAttempts attempts;
+  const bool bound = [&]
   {
-    bindJoiningHoles(bind, settings.collision, generated);
-  }
-  catch (const InvalidInputError&)
-  {
+    if (attempts.attemptJoiningHoles(bind, settings.collision, generated, "as asked"))
+      return true;
+    // Only a one-axis mid-surface the binding refused has a lattice to move.
+    const bool latticeMayMove =
+      !generated.mesh.triangles.empty() && generated.method == MidSurfaceMethod::OneAxis;
     constexpr double MinimumBandElongation = 2.0; // as makeCollisionMidSurface's
-    if (settings.collision.method != MidSurfaceMethod::Automatic ||
-        generated.method != MidSurfaceMethod::OneAxis || generated.mesh.triangles.empty() ||
-        elongationOf(visual) < MinimumBandElongation)
+    if (settings.collision.method == MidSurfaceMethod::Automatic &&
+        generated.method == MidSurfaceMethod::OneAxis && !generated.mesh.triangles.empty() &&
+        elongationOf(visual) >= MinimumBandElongation)
     {
-      throw;
+      CollisionMeshSettings band = settings.collision;
+      band.method = MidSurfaceMethod::Band;
+      if (attempts.attempt(bind, band, "band mid-surface"))
+        return true;
     }
-    CollisionMeshSettings band = settings.collision;
-    band.method = MidSurfaceMethod::Band;
-    try
+    if (!latticeMayMove)
+      return false;
+    for (const double shift : { 1.0 / 3.0, 0.5, 2.0 / 3.0 })
     {
-      bind(band);
-      return;
+      CollisionMeshSettings moved = settings.collision;
+      moved.method = MidSurfaceMethod::OneAxis;
+      moved.latticePhase = std::fmod(settings.collision.latticePhase + shift, 1.0);
+      std::ostringstream what;
+      what << "one axis, lattice phase " << moved.latticePhase;
+      if (attempts.attemptJoiningHoles(bind, moved, generated, what.str()))
+        return true;
     }
-    catch (const InvalidInputError&)
-    {
-    }
-    throw; // the one axis's error
-  }
+    return false;
+  }();
+  refused = attempts.refused();
+  if (!bound)
+    attempts.rethrowFirst();
 }
 
 /// prepareTissue with the units already found; `extra` goes into the
@@ -251,7 +289,9 @@ TissueBundle prepareOne(const TriangleMesh& input,
   announce(0.0, "making the hexahedra");
   bundle.simulation = makeSimulationHexahedra(visual, settings.hexahedronCount);
   GeneratedCollisionMesh generated;
-  bindToMidSurface(visual, settings, stage(0.05, 0.25), stage(0.25, 0.95), generated, bundle);
+  std::vector<std::string> refused;
+  bindToMidSurface(
+    visual, settings, stage(0.05, 0.25), stage(0.25, 0.95), generated, bundle, refused);
   bundle.visual = bundle.binding.visual;
   embed(bundle);
   announce(0.95, "measuring the quality");
@@ -259,6 +299,10 @@ TissueBundle prepareOne(const TriangleMesh& input,
   bundle.units = units.units;
   nlohmann::json metadata = preparationMetadata(visual, settings, generated, bundle);
   metadata["units"] = unitsJson(units);
+  if (!refused.empty())
+  {
+    metadata["refusedCollisionMeshes"] = refused;
+  }
   if (tunnels.genusBefore > 0)
   {
     metadata["tunnels"] = { { "genusBefore", tunnels.genusBefore },

@@ -52,6 +52,7 @@ int vtkCollisionMidSurfaceFilter::RequestData(vtkInformation*,
   settings.vertexCount = this->VertexCount;
   settings.maximumThicknessRatio = this->MaximumThicknessRatio;
   settings.joinSeenThroughHoles = this->JoinSeenThroughHoles;
+  settings.latticePhase = this->LatticePhase;
   settings.radiusArrayName = this->RadiusArrayName != nullptr ? this->RadiusArrayName : "";
   const thintissue::GenerationProgress progress = [this](double fraction, const char* stage)
   {
@@ -108,6 +109,7 @@ void vtkCollisionMidSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n"
      << indent << "HausdorffDistance: " << this->HausdorffDistance << "\n"
      << indent << "JoinSeenThroughHoles: " << (this->JoinSeenThroughHoles ? "on" : "off") << "\n"
+     << indent << "LatticePhase: " << this->LatticePhase << "\n"
      << indent << "ThicknessRatio: " << this->ThicknessRatio << "\n"
      << indent << "JoinedHoles: " << this->JoinedHoles << "\n"
      << indent << "LastErrorMessage: " << this->LastErrorMessage << "\n";

@@ -61,6 +61,15 @@ public:
   vtkBooleanMacro(JoinSeenThroughHoles, bool);
   ///@}
 
+  ///@{
+  /// Where the inner lattice of a one-axis mid-surface lies, in [0, 1]: a
+  /// shift by this share of a lattice vector (default 0; 1/3 and 2/3 put
+  /// its points at the centres of the default's triangles). A preparation
+  /// whose binding refuses one lattice tries others (prepareTissue).
+  vtkSetClampMacro(LatticePhase, double, 0.0, 1.0);
+  vtkGetMacro(LatticePhase, double);
+  ///@}
+
   /// Measured on the last run (0 before one, or after a failure).
   vtkGetMacro(HausdorffDistance, double);
   vtkGetMacro(ThicknessRatio, double);
@@ -80,6 +89,7 @@ protected:
   double MaximumThicknessRatio = 0.35;
   char* RadiusArrayName = nullptr;
   bool JoinSeenThroughHoles = true;
+  double LatticePhase = 0.0;
   double HausdorffDistance = 0.0;
   double ThicknessRatio = 0.0;
   int JoinedHoles = 0;

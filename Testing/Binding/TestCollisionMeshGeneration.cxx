@@ -328,6 +328,51 @@ TEST(CollisionMeshGeneration, SheetAndMeniscus)
   }
 }
 
+// The lattice phase moves the inner collision vertices and nothing else:
+// the border and the count stay, the inner vertices leave the default's
+// places (1/3: the centres of its triangles), a phase of 1 is the default
+// lattice again, and a phase out of [0, 1] is refused.
+TEST(CollisionMeshGeneration, TheLatticePhaseMovesTheInnerVertices)
+{
+  const MeniscusModel meniscus = makeMeniscus();
+  CollisionMeshSettings settings;
+  settings.vertexCount = 105;
+  const GeneratedCollisionMesh standard = makeCollisionMidSurface(meniscus.visual, settings);
+  settings.latticePhase = 1.0 / 3.0;
+  const GeneratedCollisionMesh moved = makeCollisionMidSurface(meniscus.visual, settings);
+  settings.latticePhase = 1.0;
+  const GeneratedCollisionMesh again = makeCollisionMidSurface(meniscus.visual, settings);
+  EXPECT_DOUBLE_EQ(moved.latticePhase, 1.0 / 3.0);
+  ASSERT_EQ(moved.mesh.vertexCount(), standard.mesh.vertexCount());
+  ASSERT_EQ(moved.borderVertexCount, standard.borderVertexCount);
+  const auto border = static_cast<std::size_t>(standard.borderVertexCount);
+  double edge = 0.0; // the mean collision edge
+  for (const Triangle& t : standard.mesh.triangles)
+    for (int k = 0; k < 3; ++k)
+      edge += (standard.mesh.positions[t[k]] - standard.mesh.positions[t[(k + 1) % 3]]).norm();
+  edge /= 3.0 * static_cast<double>(standard.mesh.triangleCount());
+  for (std::size_t v = 0; v < border; ++v)
+    EXPECT_EQ(moved.mesh.positions[v], standard.mesh.positions[v]) << "border vertex " << v;
+  // Each inner vertex moved: none within a tenth of an edge of the
+  // default's inner vertices.
+  std::size_t stayed = 0;
+  for (std::size_t v = border; v < moved.mesh.vertexCount(); ++v)
+  {
+    double nearest = 1e300;
+    for (std::size_t w = border; w < standard.mesh.vertexCount(); ++w)
+      nearest = std::min(nearest, (moved.mesh.positions[v] - standard.mesh.positions[w]).norm());
+    stayed += nearest < 0.1 * edge ? 1 : 0;
+  }
+  EXPECT_EQ(stayed, 0u);
+  ASSERT_EQ(again.mesh.vertexCount(), standard.mesh.vertexCount());
+  for (std::size_t v = 0; v < standard.mesh.vertexCount(); ++v)
+    EXPECT_LT((again.mesh.positions[v] - standard.mesh.positions[v]).norm(), 1e-9 * edge);
+  settings.latticePhase = 1.5;
+  EXPECT_THROW(makeCollisionMidSurface(meniscus.visual, settings), InvalidInputError);
+  settings.latticePhase = std::nan("");
+  EXPECT_THROW(makeCollisionMidSurface(meniscus.visual, settings), InvalidInputError);
+}
+
 TEST(CollisionMeshGeneration, BadInputIsNamed)
 {
   auto expectError = [](const TriangleMesh& mesh, const std::string& fragment)

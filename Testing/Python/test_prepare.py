@@ -33,6 +33,21 @@ class CollisionMidSurfaceTest(unittest.TestCase):
         # The sheet's outline has no hole: nothing to join.
         self.assertTrue(generator.GetJoinSeenThroughHoles())
         self.assertEqual(generator.GetJoinedHoles(), 0)
+        # The lattice phase moves the inner vertices, not the border.
+        self.assertEqual(generator.GetLatticePhase(), 0.0)
+        first = [collision.GetPoint(i) for i in range(collision.GetNumberOfPoints())]
+        generator.SetLatticePhase(1.0 / 3.0)
+        generator.Update()
+        self.assertEqual(generator.GetLastErrorMessage(), "")
+        moved = generator.GetOutput()
+        self.assertEqual(moved.GetNumberOfPoints(), 65)
+        changed = sum(1 for i in range(65) if moved.GetPoint(i) != first[i])
+        self.assertGreater(changed, 0)
+        self.assertLess(changed, 65)
+        generator.SetLatticePhase(2.0)  # clamped to [0, 1]
+        self.assertEqual(generator.GetLatticePhase(), 1.0)
+        generator.SetLatticePhase(0.0)
+        generator.Update()
 
         binding = thintissue.vtkVisualCollisionBindingFilter()
         binding.SetInputConnection(0, sheet.GetOutputPort(0))
