@@ -1,5 +1,7 @@
 #include "SleeveGeodesic.h"
 
+#include "SurfaceSteps.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -69,6 +71,10 @@ struct SearchNode
 {
   double distance = Infinity;
   int parent = -1;
+  /// A step across an edge from the parent: the parent's triangle and the
+  /// one across its far edge (-1 for a step along an edge).
+  int near = -1;
+  int across = -1;
   bool closed = false;
 };
 
@@ -156,14 +162,21 @@ bool searchCentroidSleeve(const TriangleMesh& mesh,
   return false;
 }
 
-/// The shortest edge path from `source` to `target` along edges of allowed
-/// triangles (A* over vertices, the straight-line distance as heuristic).
+/// The shortest path from `source` to `target` over the allowed triangles
+/// whose steps run along an edge or straight across one (through two
+/// triangles unfolded): A* over vertices, the straight-line distance as
+/// heuristic. Closer to the geodesic than an edge path on a rough surface,
+/// whose bumps an edge path passes on whichever side its edges happen to
+/// lie; the sleeve around it then holds the geodesic's corridor.
+/// `steps[i]`: the node reached at vertices[i + 1] (its near and across
+/// triangles).
 bool searchEdgePath(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   const TriangleMask& mask,
   int source,
   int target,
   std::vector<int>& vertices,
+  std::vector<SearchNode>& steps,
   std::size_t& searched)
 {
   const std::vector<Vector3>& p = mesh.positions;
@@ -173,6 +186,19 @@ bool searchEdgePath(const TriangleMesh& mesh,
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   nodes[source].distance = 0.0;
   queue.emplace((p[source] - p[target]).norm(), source);
+  auto relax = [&](int from, int to, double d, int near, int across)
+  {
+    SearchNode& next = nodes[to];
+    if (next.closed || d >= next.distance)
+    {
+      return;
+    }
+    next.distance = d;
+    next.parent = from;
+    next.near = near;
+    next.across = across;
+    queue.emplace(d + (p[to] - p[target]).norm(), to);
+  };
   while (!queue.empty())
   {
     const int v = queue.top().second;
@@ -186,39 +212,26 @@ bool searchEdgePath(const TriangleMesh& mesh,
     if (v == target)
     {
       vertices.clear();
+      steps.clear();
       for (int u = v; u >= 0; u = nodes[u].parent)
       {
         vertices.push_back(u);
+        steps.push_back(nodes[u]);
       }
       std::reverse(vertices.begin(), vertices.end());
+      std::reverse(steps.begin(), steps.end());
+      steps.erase(steps.begin()); // the source's
       searched = nodes.size();
       return true;
     }
     const double distance = node.distance;
-    for (const int* t = adjacency.vertexTrianglesBegin(v); t != adjacency.vertexTrianglesEnd(v);
-         ++t)
-    {
-      if (!mask(*t))
-      {
-        continue;
-      }
-      for (const int u : mesh.triangles[*t])
-      {
-        if (u == v)
-        {
-          continue;
-        }
-        const double d = distance + (p[u] - p[v]).norm();
-        SearchNode& next = nodes[u];
-        if (next.closed || d >= next.distance)
-        {
-          continue;
-        }
-        next.distance = d;
-        next.parent = v;
-        queue.emplace(d + (p[u] - p[target]).norm(), u);
-      }
-    }
+    forEachStep(mesh,
+      adjacency,
+      mask,
+      v,
+      true,
+      [&](int u, double length, int near, int across)
+      { relax(v, u, distance + length, near, across); });
   }
   searched = nodes.size();
   return false;
@@ -226,7 +239,8 @@ bool searchEdgePath(const TriangleMesh& mesh,
 
 /// The allowed triangles met turning round vertex v from `from` (which
 /// holds v and `edgeEnd`), first across edge (v, edgeEnd), up to the first
-/// holding `next`; false where the turn leaves the allowed surface.
+/// holding `next` (or up to triangle `goal`, when not -1); false where the
+/// turn leaves the allowed surface.
 bool turnRound(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   const TriangleMask& mask,
@@ -234,6 +248,7 @@ bool turnRound(const TriangleMesh& mesh,
   int v,
   int edgeEnd,
   int next,
+  int goal,
   std::vector<int>& run,
   double& angle)
 {
@@ -251,7 +266,7 @@ bool turnRound(const TriangleMesh& mesh,
     const Triangle& c = mesh.triangles[n];
     run.push_back(n);
     angle += cornerAngle(mesh, c, v);
-    if (hasCorner(c, next))
+    if (goal >= 0 ? n == goal : hasCorner(c, next))
     {
       return true;
     }
@@ -261,24 +276,33 @@ bool turnRound(const TriangleMesh& mesh,
   return false;
 }
 
-/// The first sleeve: triangles along the shortest edge path, turning round
-/// each of its vertices the way of the smaller angle, so that the edge path
-/// runs inside it (the funnel's path is no longer), cut to start at the
-/// last triangle holding `source` and end at the first holding `target`,
-/// and loops (a triangle met twice) cut out.
+/// The first sleeve: triangles along the path of searchEdgePath (a step
+/// across an edge takes its two triangles), turning round each of its
+/// vertices the way of the smaller angle, so that the path runs inside it
+/// (the funnel's path is no longer), cut to start at the last triangle
+/// holding `source` and end at the first holding `target`, and loops (a
+/// triangle met twice) cut out.
 bool sleeveAlongEdgePath(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   const TriangleMask& mask,
   const std::vector<int>& path,
+  const std::vector<SearchNode>& steps,
   std::vector<int>& sleeve)
 {
   sleeve.clear();
-  const int e = adjacency.findEdge(path[0], path[1]);
-  for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
+  if (steps.front().across >= 0)
   {
-    if (mask(*t) && sleeve.empty())
+    sleeve = { steps.front().near, steps.front().across };
+  }
+  else
+  {
+    const int e = adjacency.findEdge(path[0], path[1]);
+    for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
     {
-      sleeve.push_back(*t);
+      if (mask(*t) && sleeve.empty())
+      {
+        sleeve.push_back(*t);
+      }
     }
   }
   if (sleeve.empty())
@@ -291,31 +315,33 @@ bool sleeveAlongEdgePath(const TriangleMesh& mesh,
   {
     const int v = path[i];
     const int next = path[i + 1];
+    const int goal = steps[i].across >= 0 ? steps[i].near : -1;
     const Triangle& here = mesh.triangles[sleeve.back()];
-    if (hasCorner(here, next))
+    if (goal >= 0 ? sleeve.back() != goal : !hasCorner(here, next))
     {
-      continue;
-    }
-    const int other = here[0] != v && here[0] != path[i - 1]
-                        ? here[0]
-                        : (here[1] != v && here[1] != path[i - 1] ? here[1] : here[2]);
-    double bestAngle = Infinity;
-    best.clear();
-    for (const int edgeEnd : { other, path[i - 1] })
-    {
-      double angle = 0.0;
-      if (turnRound(mesh, adjacency, mask, sleeve.back(), v, edgeEnd, next, run, angle) &&
-          angle < bestAngle)
+      double bestAngle = Infinity;
+      best.clear();
+      for (const int edgeEnd : here)
       {
-        bestAngle = angle;
-        best.swap(run);
+        double angle = 0.0;
+        if (edgeEnd != v &&
+            turnRound(mesh, adjacency, mask, sleeve.back(), v, edgeEnd, next, goal, run, angle) &&
+            angle < bestAngle)
+        {
+          bestAngle = angle;
+          best.swap(run);
+        }
       }
+      if (best.empty())
+      {
+        return false;
+      }
+      sleeve.insert(sleeve.end(), best.begin(), best.end());
     }
-    if (best.empty())
+    if (goal >= 0)
     {
-      return false;
+      sleeve.push_back(steps[i].across);
     }
-    sleeve.insert(sleeve.end(), best.begin(), best.end());
   }
   const int source = path.front();
   const int target = path.back();
@@ -835,16 +861,18 @@ std::optional<SurfacePath> sleeveGeodesic(const TriangleMesh& mesh,
   {
     return std::nullopt;
   }
-  // Two first sleeves: along the shortest edge path (its path is no longer
-  // than the edge path) and A*'s over triangle centroids. Each settles in a
-  // local geodesic; on curved or rough surfaces they can differ (a bump
-  // passed on the other side), and the shorter is kept.
+  // Two first sleeves: along the shortest path of edges and steps across
+  // edges (its path is no longer than that path, nor than the edge path) and A*'s over triangle
+  // centroids. Each settles in a local geodesic; on curved or rough surfaces they can differ (a
+  // bump passed on the other side), and the shorter is kept.
   SleeveStatistics stats;
   std::optional<SurfacePath> best;
   std::vector<int> edgePath;
+  std::vector<SearchNode> steps;
   std::vector<int> sleeve;
-  if (searchEdgePath(mesh, adjacency, mask, source, target, edgePath, stats.searchedVertices) &&
-      sleeveAlongEdgePath(mesh, adjacency, mask, edgePath, sleeve))
+  if (searchEdgePath(
+        mesh, adjacency, mask, source, target, edgePath, steps, stats.searchedVertices) &&
+      sleeveAlongEdgePath(mesh, adjacency, mask, edgePath, steps, sleeve))
   {
     best = tightenSleeve(mesh, adjacency, mask, source, target, sleeve, stats);
     if (best)

@@ -518,7 +518,8 @@ TEST(GeodesicPaths, SleevePathsAgainstCgalOnTheWholeSurface)
       const SurfacePath shortest = whole.shortestPath(s, t);
       EXPECT_TRUE(statistics.sleeve);
       EXPECT_TRUE(isWellFormed(mesh, adjacency, path, s, t));
-      // Its first sleeve holds the shortest edge path.
+      // Its first sleeve holds the shortest path of edges and steps across
+      // edges, no longer than the shortest edge path.
       EXPECT_LE(path.length, sleeve.edgePathLength(s, t) * (1.0 + 1e-12));
       reroutes += statistics.sleeveReroutes;
       if (m < 2)
@@ -534,7 +535,9 @@ TEST(GeodesicPaths, SleevePathsAgainstCgalOnTheWholeSurface)
     }
   }
   EXPECT_GT(reroutes, 0);
-  EXPECT_LE(longer, 4); // of 48 (measured: 2, on the sheet)
+  // Of 48, measured: 1 on the sheet (2 when the first sleeve followed the
+  // plain edge path, without the steps across edges).
+  EXPECT_LE(longer, 3);
 }
 
 //------------------------------------------------------------------------------
