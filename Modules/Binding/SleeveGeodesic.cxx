@@ -170,7 +170,7 @@ bool searchCentroidSleeve(const TriangleMesh& mesh,
 /// lie; the sleeve around it then holds the geodesic's corridor.
 /// `steps[i]`: the node reached at vertices[i + 1] (its near and across
 /// triangles).
-bool searchEdgePath(const TriangleMesh& mesh,
+bool searchStepPath(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   const TriangleMask& mask,
   int source,
@@ -276,13 +276,13 @@ bool turnRound(const TriangleMesh& mesh,
   return false;
 }
 
-/// The first sleeve: triangles along the path of searchEdgePath (a step
+/// The first sleeve: triangles along the path of searchStepPath (a step
 /// across an edge takes its two triangles), turning round each of its
 /// vertices the way of the smaller angle, so that the path runs inside it
 /// (the funnel's path is no longer), cut to start at the last triangle
 /// holding `source` and end at the first holding `target`, and loops (a
 /// triangle met twice) cut out.
-bool sleeveAlongEdgePath(const TriangleMesh& mesh,
+bool sleeveAlongStepPath(const TriangleMesh& mesh,
   const TriangleMeshAdjacency& adjacency,
   const TriangleMask& mask,
   const std::vector<int>& path,
@@ -861,18 +861,19 @@ std::optional<SurfacePath> sleeveGeodesic(const TriangleMesh& mesh,
   {
     return std::nullopt;
   }
-  // Two first sleeves: along the shortest path of edges and steps across
-  // edges (its path is no longer than that path, nor than the edge path) and A*'s over triangle
-  // centroids. Each settles in a local geodesic; on curved or rough surfaces they can differ (a
-  // bump passed on the other side), and the shorter is kept.
+  // Two first sleeves: along the shortest path of steps along and across
+  // edges (its path is no longer than that path, nor than the edge path)
+  // and A*'s over triangle centroids. Each settles in a local geodesic; on
+  // curved or rough surfaces they can differ (a bump passed on the other
+  // side), and the shorter is kept.
   SleeveStatistics stats;
   std::optional<SurfacePath> best;
-  std::vector<int> edgePath;
+  std::vector<int> stepPath;
   std::vector<SearchNode> steps;
   std::vector<int> sleeve;
-  if (searchEdgePath(
-        mesh, adjacency, mask, source, target, edgePath, steps, stats.searchedVertices) &&
-      sleeveAlongEdgePath(mesh, adjacency, mask, edgePath, steps, sleeve))
+  if (searchStepPath(
+        mesh, adjacency, mask, source, target, stepPath, steps, stats.searchedVertices) &&
+      sleeveAlongStepPath(mesh, adjacency, mask, stepPath, steps, sleeve))
   {
     best = tightenSleeve(mesh, adjacency, mask, source, target, sleeve, stats);
     if (best)

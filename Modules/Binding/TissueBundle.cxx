@@ -226,12 +226,12 @@ void bindToMidSurface(const TriangleMesh& visual,
   {
     if (attempts.attemptJoiningHoles(bind, settings.collision, generated, "as asked"))
       return true;
-    // Only a one-axis mid-surface the binding refused has a lattice to move.
-    const bool latticeMayMove =
+    // A one-axis mid-surface the binding refused (not one the generation
+    // refused): the band may serve, and its lattice may move.
+    const bool oneAxisRefused =
       !generated.mesh.triangles.empty() && generated.method == MidSurfaceMethod::OneAxis;
     constexpr double MinimumBandElongation = 2.0; // as makeCollisionMidSurface's
-    if (settings.collision.method == MidSurfaceMethod::Automatic &&
-        generated.method == MidSurfaceMethod::OneAxis && !generated.mesh.triangles.empty() &&
+    if (settings.collision.method == MidSurfaceMethod::Automatic && oneAxisRefused &&
         elongationOf(visual) >= MinimumBandElongation)
     {
       CollisionMeshSettings band = settings.collision;
@@ -239,7 +239,7 @@ void bindToMidSurface(const TriangleMesh& visual,
       if (attempts.attempt(bind, band, "band mid-surface"))
         return true;
     }
-    if (!latticeMayMove)
+    if (!oneAxisRefused)
       return false;
     for (const double shift : { 1.0 / 3.0, 0.5, 2.0 / 3.0 })
     {

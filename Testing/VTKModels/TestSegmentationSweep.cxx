@@ -127,6 +127,21 @@ TriangleMesh segmented(const TriangleMesh& tissue, const SweepCase& c)
   return fromPolyData(filter->GetOutput(), tissue.name + " segmented");
 }
 
+/// Degenerate triangles (flying edges through a sample) are refused with
+/// advice to repair: repaired, as the user told so would.
+TriangleMesh repairedIfDegenerate(const TriangleMesh& mesh)
+{
+  return validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh;
+}
+
+/// The collision mid-surface with the 105 vertices.
+GeneratedCollisionMesh midSurfaceOf(const TriangleMesh& visual)
+{
+  CollisionMeshSettings settings;
+  settings.vertexCount = 105;
+  return makeCollisionMidSurface(visual, settings);
+}
+
 /// A sweep case as the preparation sees it (tunnels closed) and its
 /// collision mid-surface with the 105 vertices.
 struct SweepMidSurface
@@ -139,9 +154,7 @@ SweepMidSurface sweepMidSurface(const std::string& tissue, const SweepCase& c)
 {
   SweepMidSurface result;
   result.visual = closeSmallTunnels(segmented(tissueModel(tissue), c));
-  CollisionMeshSettings settings;
-  settings.vertexCount = 105;
-  result.generated = makeCollisionMidSurface(result.visual, settings);
+  result.generated = midSurfaceOf(result.visual);
   return result;
 }
 
@@ -220,10 +233,7 @@ std::string prepareAndCheck(const TriangleMesh& mesh,
       std::string(m) == "band" ? MidSurfaceMethod::Band : MidSurfaceMethod::OneAxis;
   try
   {
-    // Degenerate triangles (flying edges through a sample) are refused
-    // with advice to repair: repaired, as the user told so would.
-    const TriangleMesh input =
-      validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh;
+    const TriangleMesh input = repairedIfDegenerate(mesh);
     const TissueBundle bundle = prepareTissue(input, settings);
     if (metadata != nullptr)
       *metadata = bundle.metadata;
@@ -308,12 +318,8 @@ void expectHolesAndPrepares(const std::string& tissue,
   std::size_t borderLoopCount)
 {
   const TriangleMesh mesh = segmented(tissueModel(tissue), c);
-  const TriangleMesh input =
-    validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh;
-  const TriangleMesh closed = closeSmallTunnels(input);
-  CollisionMeshSettings settings;
-  settings.vertexCount = 105;
-  const TriangleMesh collision = makeCollisionMidSurface(closed, settings).mesh;
+  const TriangleMesh closed = closeSmallTunnels(repairedIfDegenerate(mesh));
+  const TriangleMesh collision = midSurfaceOf(closed).mesh;
   EXPECT_EQ(TriangleMeshAdjacency(closed).closedSurfaceGenus(), genus);
   EXPECT_EQ(
     borderLoops(TriangleMeshAdjacency(collision), collision.vertexCount(), collision.name).size(),
@@ -336,13 +342,8 @@ TEST(SegmentationSweep, ALatticeTheBindingRefusesIsMoved)
     const SweepCase c = sweepCase(seed);
     SCOPED_TRACE(tissue + ", " + c.toString());
     const TriangleMesh mesh = segmented(tissueModel(tissue), c);
-    const TriangleMesh input =
-      validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh;
-    const TriangleMesh visual = closeSmallTunnels(input);
-    CollisionMeshSettings settings;
-    settings.vertexCount = 105;
-    EXPECT_THROW(bindVisualToCollision(visual, makeCollisionMidSurface(visual, settings).mesh),
-      InvalidInputError);
+    const TriangleMesh visual = closeSmallTunnels(repairedIfDegenerate(mesh));
+    EXPECT_THROW(bindVisualToCollision(visual, midSurfaceOf(visual).mesh), InvalidInputError);
     std::string metadataText;
     EXPECT_EQ(prepareAndCheck(mesh, true, &metadataText), "");
     ASSERT_FALSE(metadataText.empty());
@@ -692,8 +693,7 @@ TEST(SegmentationSweep, AHoleThatIsNoTunnelIsANotch)
 TEST(SegmentationSweep, TheMidSurfaceFilterJoinsOrFillsAHoleThatIsNoTunnel)
 {
   const TriangleMesh mesh = segmented(tissueModel("FlapTear"), sweepCase(1002));
-  const TriangleMesh input = closeSmallTunnels(
-    validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh);
+  const TriangleMesh input = closeSmallTunnels(repairedIfDegenerate(mesh));
   std::array<double, 2> borderLength{ { 0.0, 0.0 } };
   for (const bool join : { true, false })
   {
@@ -743,7 +743,5 @@ TEST(SegmentationSweep, ARoughRimTakesTheLabelledEquator)
   settings.collision.vertexCount = 105;
   settings.hexahedronCount = 42;
   settings.binding.rimPaths = RimPathMethod::Geodesic;
-  const TriangleMesh input =
-    validateTriangleMesh(mesh).degenerateTriangles.count > 0 ? repairTriangleMesh(mesh) : mesh;
-  EXPECT_THROW(prepareTissue(input, settings), InvalidInputError);
+  EXPECT_THROW(prepareTissue(repairedIfDegenerate(mesh), settings), InvalidInputError);
 }
