@@ -9,6 +9,7 @@
 #include <chrono>
 #include <limits>
 #include <numeric>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -56,6 +57,34 @@ std::vector<Eigen::Matrix3d> childInverses(const CollisionTriangleSplit& split)
   return inverses;
 }
 
+/// Formula 5-2 as one affine map of a region's plane: the parent parameters
+/// of a point p of the plane are x = e0 + E F^-1 (p - frame[0]) (F the
+/// frame's sides, E = [-1 -1; 1 0; 0 1]), and the child's are y = M^-T x.
+class PlaneToChild
+{
+public:
+  PlaneToChild(const std::array<Vector2, 3>& frame, const Eigen::Matrix3d& inverse)
+  {
+    Eigen::Matrix2d frameMatrix;
+    frameMatrix.col(0) = frame[1] - frame[0];
+    frameMatrix.col(1) = frame[2] - frame[0];
+    Eigen::Matrix<double, 3, 2> sides;
+    sides << -1.0, -1.0, 1.0, 0.0, 0.0, 1.0;
+    Map = inverse.transpose() * sides * frameMatrix.inverse();
+    Offset = inverse.transpose().col(0) - Map * frame[0];
+  }
+  /// The child parameters of plane point p (clamped into the child).
+  Vector3 parameters(const Vector2& p) const
+  {
+    const Vector3 y = (Map * p + Offset).cwiseMax(0.0);
+    return y / y.sum();
+  }
+
+private:
+  Eigen::Matrix<double, 3, 2> Map;
+  Vector3 Offset;
+};
+
 /// The region's triangles grouped by piece: `members` lists them piece by
 /// piece, piece p from pieceStart[p] (given each piece's count in
 /// pieceStart[p + 1] and each triangle's piece in triangleIn).
@@ -101,7 +130,84 @@ void CuttableVisualMesh::rebindRegion(RegionCut& region,
                          locatePieces(region, onCut, worker.buffers, context);
   if (!region.locatedPieces)
     assignPieces(region, onCut, worker, context);
+  rebindFarTriangles(region, worker, context);
   worker.deactivate(region);
+}
+
+// The far triangles (RegionCut::far) go to their pieces, and their vertices
+// that no near triangle holds (those are rebound with the near ones) by
+// formula 5-2, each once, as rebindPiece would in the same plane (the
+// binding's own parameters there: the region has no fold).
+void CuttableVisualMesh::rebindFarTriangles(RegionCut& region,
+  RegionWorker& worker,
+  const CutContext& context)
+{
+  if (region.far.empty())
+    return;
+  const CollisionTriangleSplit& split = context.cut->splits[region.split];
+  const std::vector<Eigen::Matrix3d> inverses = childInverses(split);
+  std::vector<PlaneToChild> toChild;
+  for (const Eigen::Matrix3d& inverse : inverses)
+    toChild.emplace_back(region.frame, inverse);
+  const std::size_t firstFar = region.rebound.size();
+  const auto side = static_cast<std::int8_t>(region.side > 0 ? 1 : -1);
+  std::vector<int>& localIndex = worker.localIndex;
+  if (localIndex.size() < Mesh.vertexCount())
+    localIndex.resize(Mesh.vertexCount(), -1);
+  for (const RegionCut::FarTriangle& far : region.far)
+  {
+    TriangleRegion[far.triangle] = split.children[far.piece];
+    TriangleSide[far.triangle] = side;
+    for (const int v : Mesh.triangles[far.triangle])
+    {
+      // Near vertices are local (>= 0), far ones done are marked -2.
+      if (localIndex[v] != -1)
+        continue;
+      localIndex[v] = -2;
+      VisualVertexBinding& b = Bindings[v];
+      b.element = split.children[far.piece];
+      // Strictly inside the parent (separateFarTriangles): not bulged.
+      b.parameters = toChild[far.piece].parameters(planarPoint(region.frame, b.parameters));
+      region.rebound.push_back(v);
+    }
+  }
+  for (std::size_t i = firstFar; i < region.rebound.size(); ++i)
+    localIndex[region.rebound[i]] = -1;
+  listPiecesInRegionOrder(region, worker.buffers, split);
+}
+
+// Each piece's list of triangles as the region laid out whole would give
+// it (rebindPiece): its untouched triangles in the region's order (near
+// and far interleaved by position), then its re-meshed ones; the cut
+// does not depend on how much of the region lay far.
+void CuttableVisualMesh::listPiecesInRegionOrder(RegionCut& region,
+  CutBuffers& buffers,
+  const CollisionTriangleSplit& split)
+{
+  auto& lists = buffers.pieceLists;
+  lists.resize(split.children.size());
+  for (auto& list : lists)
+    list.clear();
+  auto pieceOf = [&](int t)
+  {
+    const int child = TriangleRegion[t];
+    int piece = 0;
+    while (split.children[piece] != child)
+      ++piece;
+    return piece;
+  };
+  const std::size_t untouched = region.untouchedPositions.size();
+  std::size_t m = 0;
+  for (const RegionCut::FarTriangle& far : region.far)
+  {
+    for (; m < untouched && region.untouchedPositions[m] < far.position; ++m)
+      lists[pieceOf(region.newTriangles[m])].push_back(region.newTriangles[m]);
+    lists[far.piece].push_back(far.triangle);
+  }
+  for (; m < region.newTriangles.size(); ++m)
+    lists[pieceOf(region.newTriangles[m])].push_back(region.newTriangles[m]);
+  for (std::size_t c = 0; c < lists.size(); ++c)
+    Regions[split.children[c]][region.side].swap(lists[c]);
 }
 
 // A vertex on a traced cut is bound to its collision edge by its parameter
@@ -502,16 +608,7 @@ void CuttableVisualMesh::rebindPiece(RegionCut& region,
   const std::vector<Triangle>& corners = region.newLocalTriangles;
   std::vector<char>& rebindable = buffers.rebindable;
   const int side = region.side > 0 ? 1 : -1;
-  Eigen::Matrix2d frameMatrix;
-  frameMatrix.col(0) = region.frame[1] - region.frame[0];
-  frameMatrix.col(1) = region.frame[2] - region.frame[0];
-  // The parent parameters of a point p of the plane are x = e0 + E F^-1
-  // (p - frame[0]) (F the frame's sides, E = [-1 -1; 1 0; 0 1]), and
-  // formula 5-2 makes them y = M^-T x: one affine map y = A p + o.
-  Eigen::Matrix<double, 3, 2> sides;
-  sides << -1.0, -1.0, 1.0, 0.0, 0.0, 1.0;
-  const Eigen::Matrix<double, 3, 2> map = inverse.transpose() * sides * frameMatrix.inverse();
-  const Vector3 offset = inverse.transpose().col(0) - map * region.frame[0];
+  const PlaneToChild toChild(region.frame, inverse);
   std::vector<int>& childRegion = Regions[child][region.side];
   if (childRegion.empty())
     childRegion.reserve(region.newTriangles.size());
@@ -532,9 +629,8 @@ void CuttableVisualMesh::rebindPiece(RegionCut& region,
       VisualVertexBinding& b = Bindings[v];
       // The parent parameters of where the vertex lies in the plane it
       // was cut in (its binding's own, unless a fold was repaired there).
-      const Vector3 y = (map * region.planar[local] + offset).cwiseMax(0.0);
       b.element = child;
-      b.parameters = y / y.sum();
+      b.parameters = toChild.parameters(region.planar[local]);
       region.rebound.push_back(v);
     }
   }
@@ -762,9 +858,13 @@ void CuttableVisualMesh::openVisualMesh(const CuttableCollisionMesh& collision, 
     for (const std::vector<Claim>& some : claimsPerTriangle)
       claims.insert(claims.end(), some.begin(), some.end());
   }
+  // By vertex, then triangle and corner: the copies made do not depend on
+  // the order the regions list their triangles in.
   std::sort(claims.begin(),
     claims.end(),
-    [](const Claim& p, const Claim& q) { return p.vertex < q.vertex; });
+    [](const Claim& p, const Claim& q) {
+      return std::tie(p.vertex, p.triangle, p.corner) < std::tie(q.vertex, q.triangle, q.corner);
+    });
   context.copies.clear();
   for (std::size_t i = 0; i < claims.size();)
   {
@@ -961,6 +1061,8 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   result.regionsLocated = static_cast<std::size_t>(std::count_if(context.regions.begin(),
     context.regions.end(),
     [](const RegionCut& region) { return region.locatedPieces; }));
+  for (const RegionCut& region : context.regions)
+    result.farTriangles += region.far.size();
   finishEdgePoints(context);
   openVisualMesh(collision, context);
   updateEdgePaths(collision, context);

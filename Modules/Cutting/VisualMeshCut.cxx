@@ -114,11 +114,6 @@ void extractTriangles(const TriangleMesh& mesh,
   }
 }
 
-Vector2 planarPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
-{
-  return parameters[0] * frame[0] + parameters[1] * frame[1] + parameters[2] * frame[2];
-}
-
 /// Formula 5-1's plane: the triangle's rest corners in 2D, lengths and
 /// angles kept.
 std::array<Vector2, 3> planarFrame(const std::vector<Vector3>& rest, const Triangle& corners)
@@ -128,31 +123,6 @@ std::array<Vector2, 3> planarFrame(const std::vector<Vector3>& rest, const Trian
   const Vector3 xAxis = e1.normalized();
   const Vector3 yAxis = e1.cross(e2).cross(e1).normalized();
   return { Vector2::Zero(), Vector2(e1.norm(), 0.0), Vector2(e2.dot(xAxis), e2.dot(yAxis)) };
-}
-
-/// The region's border bulges out of the triangle by this fraction of a
-/// side times t (1 - t) along it: with straight sides, a visual triangle
-/// with all three corners on one path (where the path turns around it) is
-/// flat, and cuts ending beside it would meet there. Small: the cut moves
-/// by at most a 4,000th of the side near the border.
-constexpr double BoundaryBulge = 1e-3;
-
-/// A vertex's point in the frame, border vertices bulged outward.
-Vector2 bulgedPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
-{
-  Vector2 p = planarPoint(frame, parameters);
-  for (int j = 0; j < 3; ++j)
-  {
-    const int from = (j + 1) % 3, to = (j + 2) % 3;
-    if (parameters[j] != 0.0 || parameters[from] <= 0.0 || parameters[to] <= 0.0)
-      continue;
-    const Vector2 side = frame[to] - frame[from];
-    Vector2 outward(side.y(), -side.x());
-    if (outward.dot(frame[j] - frame[from]) > 0.0)
-      outward = -outward;
-    p += BoundaryBulge * parameters[from] * parameters[to] * outward;
-  }
-  return p;
 }
 
 /// Tutte's embedding of a region: border vertices at their (bulged)
@@ -520,7 +490,10 @@ void CuttableVisualMesh::reserveRoom()
     Workers.resize(static_cast<std::size_t>(
       std::clamp(tbb::this_task_arena::max_concurrency(), 1, MaxRegionWorkers)));
   for (RegionWorker& worker : Workers)
+  {
     worker.localIndex.assign(vertices, -1);
+    worker.vertexCells.assign(vertices, 0);
+  }
   Workers.front().buffers.localTexture.assign(
     Mesh.textureCoordinates.size() + Mesh.textureCoordinates.size() / 4, -1);
 }
@@ -827,7 +800,7 @@ void CuttableVisualMesh::forEachRegion(CutContext& context,
   std::vector<RegionCut>& regions = context.regions;
   std::size_t triangles = 0;
   for (const RegionCut& region : regions)
-    triangles += region.triangles.size();
+    triangles += region.triangles.size() + region.far.size();
   const int workers = triangles < Settings.parallelRegionTriangles
                         ? 1
                         : std::min({ tbb::this_task_arena::max_concurrency(),
@@ -919,15 +892,59 @@ void CuttableVisualMesh::traceRegionCuts(CutContext& context)
 
 // One region: its local vertices and triangles, its plane, its traced cuts
 // and the triangles they touch (it reads the visual mesh and binding only).
+// Where most of it lies far from the cuts, only the triangles near them are
+// laid out and traced (separateFarTriangles): a cut costs its line and a
+// pass over the rest.
 void CuttableVisualMesh::traceRegion(RegionCut& region,
   RegionWorker& worker,
   const CutContext& context)
 {
   const CollisionTriangleSplit& split = context.cut->splits[region.split];
-  const std::array<Vector2, 3>& frame = region.frame;
-  const double scale = frameScale(frame);
-  // Local vertices (RegionWorker::localIndex), the triangles in them; a
-  // region has fewer vertices than triangles (plus its border).
+  const bool separated = Settings.piecesByLocation &&
+                         region.triangles.size() >= Settings.separatedRegionTriangles &&
+                         separateFarTriangles(region, worker, context);
+  layOutRegion(region, worker, context);
+  if (separated && !farTrianglesAgree(region))
+  {
+    // A fold (rare): the region is laid out and repaired whole.
+    worker.deactivate(region);
+    region.vertices.clear();
+    region.parameters.clear();
+    region.localTriangles.clear();
+    region.far.clear();
+    region.nearPositions.clear();
+    region.triangles = Regions[split.parent][region.side];
+    layOutRegion(region, worker, context);
+  }
+  const double scale = frameScale(region.frame);
+  region.candidate.assign(region.triangles.size(), 0);
+  for (const auto& corners : split.childCorners)
+    region.pieces.push_back({ { bulgedPoint(region.frame, corners[0]),
+      bulgedPoint(region.frame, corners[1]),
+      bulgedPoint(region.frame, corners[2]) } });
+  for (CrossingPath& crossing : region.crossings)
+    traceCut(region, scale, crossing, worker, context);
+  selectTouchedTriangles(region, worker);
+  worker.deactivate(region);
+}
+
+Vector3 CuttableVisualMesh::parentParameters(int v, const CollisionTriangleSplit& split) const
+{
+  // Most are inner vertices, bound to the parent itself.
+  const VisualVertexBinding& b = Bindings[v];
+  return b.kind == BindingKind::CollisionTriangle && b.element == split.parent
+           ? b.parameters
+           : parametersIn(v, split.parent, split.parentCorners);
+}
+
+// The region's triangles (region.triangles) as local vertices and triangles
+// (RegionWorker::localIndex), and its plane (regionPlane).
+void CuttableVisualMesh::layOutRegion(RegionCut& region,
+  RegionWorker& worker,
+  const CutContext& context)
+{
+  const CollisionTriangleSplit& split = context.cut->splits[region.split];
+  // A region has fewer vertices than triangles (plus its border).
   std::vector<Triangle>& triangles = region.localTriangles;
   triangles.reserve(region.triangles.size());
   region.vertices.reserve(region.triangles.size() + 64);
@@ -942,14 +959,7 @@ void CuttableVisualMesh::traceRegion(RegionCut& region,
       if (local[k] >= 0)
         continue;
       local[k] = static_cast<int>(region.vertices.size());
-      // Most are inner vertices, bound to the parent itself.
-      const VisualVertexBinding& b = Bindings[v];
-      worker.addToActive(region,
-        v,
-        b.kind == BindingKind::CollisionTriangle && b.element == split.parent
-          ? b.parameters
-          : parametersIn(v, split.parent, split.parentCorners),
-        Vector2::Zero());
+      worker.addToActive(region, v, parentParameters(v, split), Vector2::Zero());
     }
     triangles.push_back(local);
   }
@@ -961,17 +971,170 @@ void CuttableVisualMesh::traceRegion(RegionCut& region,
   std::vector<char> isInner(region.vertices.size());
   for (std::size_t i = 0; i < region.vertices.size(); ++i)
     isInner[i] = Bindings[region.vertices[i]].kind == BindingKind::CollisionTriangle;
-  region.planar = regionPlane(region.parameters, triangles, isInner, frame, region.foldFree);
+  region.planar = regionPlane(region.parameters, triangles, isInner, region.frame, region.foldFree);
   region.planar.reserve(room);
-  region.candidate.assign(region.triangles.size(), 0);
-  for (const auto& corners : split.childCorners)
-    region.pieces.push_back({ { bulgedPoint(frame, corners[0]),
-      bulgedPoint(frame, corners[1]),
-      bulgedPoint(frame, corners[2]) } });
+}
+
+// The far triangles of a region (RegionCut::far): found before the region
+// is laid out, with the lines its cuts will be traced along (traceCut's,
+// from the same feature points and plane), so that they are exactly the
+// triangles traceCut would pass by and locatePieces would place. False
+// (nothing separated) where the lines or pieces are degenerate, a cut
+// starts at a vertex outside the region, or nothing lies far.
+bool CuttableVisualMesh::separateFarTriangles(RegionCut& region,
+  RegionWorker& worker,
+  const CutContext& context) const
+{
+  const CollisionTriangleSplit& split = context.cut->splits[region.split];
+  const std::array<Vector2, 3>& frame = region.frame;
+  auto planarOf = [&](int v) { return bulgedPoint(frame, parentParameters(v, split)); };
+  auto pointOf = [&](const SurfacePoint& p) -> Vector2
+  {
+    return p.isVertex() ? planarOf(p.vertex)
+                        : Vector2((1.0 - p.edgeParameter) * planarOf(p.edgeStart) +
+                                  p.edgeParameter * planarOf(p.edgeEnd));
+  };
+  // The cuts' ends: a collision corner's start is its paired visual vertex,
+  // which must be in the region (featurePoint looks elsewhere otherwise).
+  std::array<int, 2 * PieceLocator::MaxLines> members{};
+  int memberCount = 0;
+  if (region.crossings.size() > PieceLocator::MaxLines)
+    return false;
   for (CrossingPath& crossing : region.crossings)
-    traceCut(region, scale, crossing, worker, context);
-  selectTouchedTriangles(region, worker);
-  worker.deactivate(region);
+    for (int end = 0; end < 2; ++end)
+    {
+      const int vertex = crossing.ends[end];
+      const int corner = cornerIndex(crossing.barycentric[end]);
+      SurfacePoint point;
+      if (corner < 0)
+      {
+        const EdgePoint& edgePoint = context.edgePoints[context.edgePointOf.at(vertex)];
+        point = edgePoint.visual[edgePoint.junction ? region.junctionSlot() : region.side];
+      }
+      else
+      {
+        const int paired = Paired[vertex][pairedSlot(vertex, region.side, region.cleft)];
+        if (paired < 0)
+          return false;
+        members[memberCount++] = paired;
+        point = SurfacePoint::atVertex(paired);
+      }
+      crossing.planar[end] = pointOf(point);
+    }
+  const double tolerance = OnLineTolerance * frameScale(frame);
+  PieceLocator locator;
+  if (!pieceLocator(region, split, tolerance, locator))
+    return false;
+  // Per line, the signed distance of a point of barycentric parameters x
+  // from it: g . x - c (the plane point is sum x_j frame_j). A vertex is far
+  // beyond twice the tolerance: traceCut's own distances, rounded
+  // otherwise, still put it off the line.
+  std::array<Vector3, PieceLocator::MaxLines> g;
+  std::array<double, PieceLocator::MaxLines> c;
+  for (int l = 0; l < locator.lineCount; ++l)
+  {
+    g[l] = Vector3(locator.normal[l].dot(frame[0]),
+      locator.normal[l].dot(frame[1]),
+      locator.normal[l].dot(frame[2]));
+    c[l] = locator.normal[l].dot(locator.from[l]);
+  }
+  const double margin = 2.0 * tolerance;
+  // The cell of a vertex: bit l set on line l's positive side; -1 within
+  // the margin of a line, or not an inner vertex strictly inside the parent
+  // (those are bulged, and lie on the region's border). Each vertex once:
+  // kept + 1 in `cells` (all 0 between regions) until the pass ends.
+  std::vector<std::int8_t>& cells = worker.vertexCells;
+  if (cells.size() < Mesh.vertexCount())
+    cells.resize(Mesh.vertexCount(), 0);
+  std::vector<int>& seen = worker.buffers.here;
+  seen.clear();
+  auto cellOf = [&](int v)
+  {
+    if (cells[v] != 0)
+      return cells[v] - 1;
+    seen.push_back(v);
+    int cell = -1;
+    const VisualVertexBinding& b = Bindings[v];
+    if (b.kind == BindingKind::CollisionTriangle && b.element == split.parent &&
+        b.parameters.minCoeff() > 0.0)
+    {
+      cell = 0;
+      for (int l = 0; l < locator.lineCount && cell >= 0; ++l)
+      {
+        const double d = g[l].dot(b.parameters) - c[l];
+        cell = std::abs(d) <= margin ? -1 : cell | (d > 0.0 ? 1 : 0) << l;
+      }
+    }
+    cells[v] = static_cast<std::int8_t>(cell + 1);
+    return cell;
+  };
+  // The frame's sides turn counterclockwise (planarFrame): the areas of
+  // the parameters' last two coordinates have the signs of the plane's.
+  std::vector<int> near;
+  near.reserve(region.triangles.size() / 4 + 16);
+  region.nearPositions.clear();
+  region.nearPositions.reserve(near.capacity());
+  region.far.clear();
+  region.far.reserve(region.triangles.size());
+  double smallestArea = std::numeric_limits<double>::infinity();
+  double largestArea = -smallestArea;
+  for (std::size_t i = 0; i < region.triangles.size(); ++i)
+  {
+    const int t = region.triangles[i];
+    const int position = static_cast<int>(i);
+    const Triangle& corners = Mesh.triangles[t];
+    const int cell = cellOf(corners[0]);
+    const int piece = cell >= 0 && cellOf(corners[1]) == cell && cellOf(corners[2]) == cell
+                        ? locator.pieceOfSides[cell]
+                        : -1;
+    if (piece < 0)
+    {
+      near.push_back(t);
+      region.nearPositions.push_back(position);
+      continue;
+    }
+    const Vector3& x0 = Bindings[corners[0]].parameters;
+    const Vector3& x1 = Bindings[corners[1]].parameters;
+    const Vector3& x2 = Bindings[corners[2]].parameters;
+    const double area = (x1[1] - x0[1]) * (x2[2] - x0[2]) - (x1[2] - x0[2]) * (x2[1] - x0[1]);
+    smallestArea = std::min(smallestArea, area);
+    largestArea = std::max(largestArea, area);
+    region.far.push_back({ t, piece, position });
+  }
+  for (int v : seen)
+    cells[v] = 0;
+  for (int m = 0; m < memberCount; ++m)
+  {
+    const bool found = std::any_of(near.begin(),
+      near.end(),
+      [&](int t)
+      {
+        const Triangle& c = Mesh.triangles[t];
+        return c[0] == members[m] || c[1] == members[m] || c[2] == members[m];
+      });
+    if (!found)
+      region.far.clear();
+  }
+  if (region.far.empty() || !(smallestArea * largestArea > 0.0))
+  {
+    region.far.clear();
+    region.nearPositions.clear();
+    return false;
+  }
+  region.farOrientation = largestArea > 0.0 ? 1.0 : -1.0;
+  region.triangles = std::move(near);
+  return true;
+}
+
+bool CuttableVisualMesh::farTrianglesAgree(const RegionCut& region) const
+{
+  if (!region.foldFree)
+    return false;
+  double total = 0.0;
+  for (const Triangle& t : region.localTriangles)
+    total +=
+      cross2(region.planar[t[1]] - region.planar[t[0]], region.planar[t[2]] - region.planar[t[0]]);
+  return total * region.farOrientation > 0.0;
 }
 
 SurfacePoint CuttableVisualMesh::featurePoint(const RegionCut& region,
@@ -1223,6 +1386,8 @@ void CuttableVisualMesh::selectTouchedTriangles(RegionCut& region, const RegionW
       region.touched.push_back(t);
     else
     {
+      if (!region.far.empty())
+        region.untouchedPositions.push_back(region.nearPositions[i]);
       region.newTriangles.push_back(t);
       region.newLocalTriangles.push_back(region.localTriangles[i]);
     }

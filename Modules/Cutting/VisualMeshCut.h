@@ -83,9 +83,19 @@ struct VisualCutSettings
   /// go to the collision pieces their centroids lie in (a few sign tests
   /// each) instead of through the union-find of the region's pieces, which
   /// gives the same pieces there and stays the way wherever the plane
-  /// folds or a centroid lies within a round-off of a crossing. false: the
-  /// union-find always (the reference the tests compare with).
+  /// folds or a centroid lies within a round-off of a crossing; and its
+  /// triangles far from every cut (all corners inner vertices beyond twice
+  /// the on-line tolerance of each crossing's line, on one side) are placed
+  /// and rebound in one pass, only the others laid out and traced. false:
+  /// the whole region through the union-find always (the reference the
+  /// tests compare with, bit for bit).
   bool piecesByLocation = true;
+  /// The far triangles of a split region are set apart (piecesByLocation)
+  /// when it holds at least this many triangles: below it, the pass over
+  /// the region costs more than not laying out the far ones saves
+  /// (callgrind, the short cut of the sheets: break-even near 2,000). 0:
+  /// always (the property tests), the largest value: never.
+  std::size_t separatedRegionTriangles = 2000;
 };
 
 /// How far the cut surface departs from the smooth cut (6.4.4): over the
@@ -118,6 +128,10 @@ struct VisualCutResult
   /// piecesByLocation) rather than by the union-find.
   std::size_t splitRegions = 0;
   std::size_t regionsLocated = 0;
+  /// Triangles of those regions that lay far from every cut: placed and
+  /// rebound where they lie, neither laid out nor traced (see
+  /// piecesByLocation).
+  std::size_t farTriangles = 0;
   bool changed() const { return !changedTriangles.empty(); }
 };
 
@@ -282,6 +296,8 @@ private:
     /// remeshRegions: per texture coordinate, its local index (all -1
     /// between uses).
     std::vector<int> localTexture;
+    /// listPiecesInRegionOrder: per piece of a split, its triangles.
+    std::vector<std::vector<int>> pieceLists;
   };
   struct RegionCut;
   struct EdgePoint;
@@ -294,6 +310,9 @@ private:
   struct RegionWorker
   {
     std::vector<int> localIndex;
+    /// Per visual vertex, its cell among a region's crossings + 1 while
+    /// separateFarTriangles runs (all 0 otherwise).
+    std::vector<std::int8_t> vertexCells;
     CutBuffers buffers;
     int local(int v) const { return v < static_cast<int>(localIndex.size()) ? localIndex[v] : -1; }
     void activate(const RegionCut& region);
@@ -361,6 +380,15 @@ private:
     const RegionWorker& worker,
     const CutContext& context) const;
   void traceRegion(RegionCut& region, RegionWorker& worker, const CutContext& context);
+  /// A region vertex's barycentric parameters in the split's parent.
+  Vector3 parentParameters(int v, const CollisionTriangleSplit& split) const;
+  bool separateFarTriangles(RegionCut& region,
+    RegionWorker& worker,
+    const CutContext& context) const;
+  void layOutRegion(RegionCut& region, RegionWorker& worker, const CutContext& context);
+  /// Whether the laid-out near triangles and the far ones lie in the plane
+  /// without a fold together (else the region is laid out whole).
+  bool farTrianglesAgree(const RegionCut& region) const;
   void traceCut(RegionCut& region,
     double scale,
     CrossingPath& crossing,
@@ -389,6 +417,10 @@ private:
   void selectTouchedTriangles(RegionCut& region, const RegionWorker& worker);
   void rebindSplitRegions(CutContext& context);
   void rebindRegion(RegionCut& region, RegionWorker& worker, const CutContext& context);
+  void rebindFarTriangles(RegionCut& region, RegionWorker& worker, const CutContext& context);
+  void listPiecesInRegionOrder(RegionCut& region,
+    CutBuffers& buffers,
+    const CollisionTriangleSplit& split);
   std::vector<char> bindCrossingVertices(RegionCut& region,
     RegionWorker& worker,
     const CutContext& context);

@@ -26,6 +26,37 @@ inline double frameScale(const std::array<Vector2, 3>& frame)
     { (frame[1] - frame[0]).norm(), (frame[2] - frame[1]).norm(), (frame[0] - frame[2]).norm() });
 }
 
+/// A point given by barycentric parameters in the frame (formula 5-1).
+inline Vector2 planarPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
+{
+  return parameters[0] * frame[0] + parameters[1] * frame[1] + parameters[2] * frame[2];
+}
+
+/// The region's border bulges out of the triangle by this fraction of a
+/// side times t (1 - t) along it: with straight sides, a visual triangle
+/// with all three corners on one path (where the path turns around it) is
+/// flat, and cuts ending beside it would meet there. Small: the cut moves
+/// by at most a 4,000th of the side near the border.
+constexpr double BoundaryBulge = 1e-3;
+
+/// A vertex's point in the frame, border vertices bulged outward.
+inline Vector2 bulgedPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
+{
+  Vector2 p = planarPoint(frame, parameters);
+  for (int j = 0; j < 3; ++j)
+  {
+    const int from = (j + 1) % 3, to = (j + 2) % 3;
+    if (parameters[j] != 0.0 || parameters[from] <= 0.0 || parameters[to] <= 0.0)
+      continue;
+    const Vector2 side = frame[to] - frame[from];
+    Vector2 outward(side.y(), -side.x());
+    if (outward.dot(frame[j] - frame[from]) > 0.0)
+      outward = -outward;
+    p += BoundaryBulge * parameters[from] * parameters[to] * outward;
+  }
+  return p;
+}
+
 /// The collision pieces of a split in its region's plane: its crossings'
 /// lines (unit normals), and the piece on the inner side of all its
 /// crossings per combination of sides (bit l: normal l . (x - from l) > 0).
@@ -84,7 +115,28 @@ struct CuttableVisualMesh::RegionCut
   /// The path slot its border takes at a junction (the crease's, or its
   /// side's), and elsewhere.
   int junctionSlot() const { return cleft ? CuttableVisualMesh::CreaseSlot : side; }
+  /// The triangles worked on: the region's, or only those near a traced
+  /// cut when the rest lie far from every cut (`far`).
   std::vector<int> triangles;
+  /// Triangles of inner vertices only, each corner beyond the on-line
+  /// tolerance on one side of every crossing, so no traced cut touches
+  /// them and their piece is where they lie (separateFarTriangles). They
+  /// are neither laid out nor traced; their vertices are rebound by
+  /// formula 5-2 at once.
+  struct FarTriangle
+  {
+    int triangle;
+    int piece;    ///< index into the split's children
+    int position; ///< in the region's list
+  };
+  std::vector<FarTriangle> far;
+  /// Where separated: per near triangle, and per untouched one (the first
+  /// of newTriangles), its position in the region's list, so that the
+  /// pieces list their triangles in the region's order (rebindFarTriangles).
+  std::vector<int> nearPositions;
+  std::vector<int> untouchedPositions;
+  /// The sign of the far triangles' areas in the plane (all the same).
+  double farOrientation = 0.0;
   /// Per triangle: its corners as local vertices, and whether a traced
   /// cut comes near it (only those can hold a point of a traced path).
   std::vector<Triangle> localTriangles;

@@ -354,8 +354,18 @@ inline ::testing::AssertionResult sameVisualMesh(const CuttableVisualMesh& a,
 {
   const TriangleMesh& x = a.mesh();
   const TriangleMesh& y = b.mesh();
-  if (x.positions != y.positions || x.triangles != y.triangles)
-    return ::testing::AssertionFailure() << "positions or triangles differ";
+  if (x.positions != y.positions)
+    return ::testing::AssertionFailure()
+           << "positions differ (" << x.vertexCount() << " and " << y.vertexCount() << " vertices)";
+  if (x.triangles != y.triangles)
+  {
+    std::size_t t = 0;
+    while (t < x.triangleCount() && t < y.triangleCount() && x.triangles[t] == y.triangles[t])
+      ++t;
+    return ::testing::AssertionFailure()
+           << "triangles differ from triangle " << t << " (" << x.triangleCount() << " and "
+           << y.triangleCount() << " triangles)";
+  }
   if (x.textureCoordinates != y.textureCoordinates || x.textureCorners != y.textureCorners)
     return ::testing::AssertionFailure() << "texture coordinates differ";
   if (a.triangleRegions() != b.triangleRegions() || a.triangleSides() != b.triangleSides())

@@ -57,6 +57,9 @@ public:
       // whatever the regions' size (the models' regions are small).
       if (e % 2 || CompareWith == Twin::OneThread)
         settings.visual.parallelRegionTriangles = 0;
+      // The models' regions are small: their far triangles are set apart
+      // whatever the size, so that every sweep checks that path too.
+      settings.visual.separatedRegionTriangles = 0;
       TissueCutterSettings twinSettings = settings;
       if (CompareWith == Twin::OneThread)
         twinSettings.visual.parallelRegionTriangles = std::numeric_limits<std::size_t>::max();
@@ -100,6 +103,7 @@ public:
           ASSERT_EQ(report.visualError, "") << Model.name << ", episode " << e << ", sweep " << s;
           SplitRegions += report.visual.splitRegions;
           RegionsLocated += report.visual.regionsLocated;
+          FarTriangles += report.visual.farTriangles;
           // Counts grow by what the cut touched only: copies of touched
           // hexahedra, at most one edge point and copies per changed triangle.
           const auto& touched = report.simulation.touchedHexahedra;
@@ -144,6 +148,9 @@ public:
   /// pieces were found by location (VisualCutResult).
   std::size_t SplitRegions = 0;
   std::size_t RegionsLocated = 0;
+  /// Over all sweeps: triangles of split regions that lay far from the cut
+  /// (VisualCutResult::farTriangles).
+  std::size_t FarTriangles = 0;
   /// Cut the bound visual mesh too.
   const VisualCollisionBinding* Binding = nullptr;
   /// With a binding, a twin cutter cuts the same blades and must end each
