@@ -150,14 +150,13 @@ void CuttableVisualMesh::rebindFarTriangles(RegionCut& region,
   for (const Eigen::Matrix3d& inverse : inverses)
     toChild.emplace_back(region.frame, inverse);
   const std::size_t firstFar = region.rebound.size();
-  const auto side = static_cast<std::int8_t>(region.side > 0 ? 1 : -1);
   std::vector<int>& localIndex = worker.localIndex;
   if (localIndex.size() < Mesh.vertexCount())
     localIndex.resize(Mesh.vertexCount(), -1);
   for (const RegionCut::FarTriangle& far : region.far)
   {
+    // Its side stays the region's.
     TriangleRegion[far.triangle] = split.children[far.piece];
-    TriangleSide[far.triangle] = side;
     for (const int v : Mesh.triangles[far.triangle])
     {
       // Near vertices are local (>= 0), far ones done are marked -2.
