@@ -172,6 +172,7 @@ SharedRunSeparation separateSharedRuns(const TriangleMesh& mesh,
   SharedRunSeparation result;
   result.paths.resize(pathVertices.size());
   result.detours.assign(pathVertices.size(), 0);
+  result.aroundVertices.resize(pathVertices.size());
   std::vector<SurfacePoint> runPoints;
   std::vector<int> runEdges;
   for (std::size_t k = 0; k < pathVertices.size(); ++k)
@@ -198,6 +199,7 @@ SharedRunSeparation separateSharedRuns(const TriangleMesh& mesh,
       for (; next <= run.last; ++next)
       {
         --vertexUses[path[next]];
+        result.aroundVertices[k].push_back(path[next]);
       }
       result.detours[k] += static_cast<int>(run.last - run.first + 1);
       ++result.runsSeparated;

@@ -25,8 +25,9 @@ struct SharedRunSeparation
   /// Every path as points of the mesh: its vertices, with the vertices of
   /// a re-routed run replaced by edge points beside them.
   std::vector<SurfacePath> paths;
-  /// Per path, how many of its vertices were re-routed around.
+  /// Per path, how many of its vertices were re-routed around, and which.
   std::vector<int> detours;
+  std::vector<std::vector<int>> aroundVertices;
   /// Runs of touched vertices re-routed.
   int runsSeparated = 0;
   /// Runs left as they are: paths cross there, or a side is free only once

@@ -79,8 +79,10 @@ struct BindingPath
   std::vector<int> visualVertices;
   double length = 0.0; ///< in the rest configuration
   /// Vertices of the geodesic the path was re-routed around, where another
-  /// path touched it (SharedPathRuns.h): 0 for an exact geodesic. Not
-  /// carried by the VTK binding arrays (0 when read back from them).
+  /// path touched it (SharedPathRuns.h), and, for an inner path, its
+  /// vertices a rim path was re-routed around (its half widened there): 0
+  /// for an exact geodesic. Not carried by the VTK binding arrays (0 when
+  /// read back from them).
   int detours = 0;
 };
 
