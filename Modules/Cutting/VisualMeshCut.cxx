@@ -975,74 +975,71 @@ void CuttableVisualMesh::layOutRegion(RegionCut& region,
   region.planar.reserve(room);
 }
 
-// The far triangles of a region (RegionCut::far): found before the region
-// is laid out, with the lines its cuts will be traced along (traceCut's,
-// from the same feature points and plane), so that they are exactly the
-// triangles traceCut would pass by and locatePieces would place. False
-// (nothing separated) where the lines or pieces are degenerate, a cut
-// starts at a vertex outside the region, or nothing lies far.
-bool CuttableVisualMesh::separateFarTriangles(RegionCut& region,
-  RegionWorker& worker,
-  const CutContext& context) const
+// The lines the region's cuts will be traced along (CrossingPath::planar):
+// traceCut's, from the same feature points in the same plane, before the
+// region is laid out. A cut from a collision corner starts at the corner's
+// paired visual vertex: `pairedEnds` gets those, which must be in the
+// region (featurePoint looks elsewhere otherwise). False where a corner
+// has no paired vertex or there are more crossings than a locator takes.
+bool CuttableVisualMesh::crossingLines(RegionCut& region,
+  const CutContext& context,
+  std::vector<int>& pairedEnds) const
 {
   const CollisionTriangleSplit& split = context.cut->splits[region.split];
-  const std::array<Vector2, 3>& frame = region.frame;
-  auto planarOf = [&](int v) { return bulgedPoint(frame, parentParameters(v, split)); };
-  auto pointOf = [&](const SurfacePoint& p) -> Vector2
-  {
-    return p.isVertex() ? planarOf(p.vertex)
-                        : Vector2((1.0 - p.edgeParameter) * planarOf(p.edgeStart) +
-                                  p.edgeParameter * planarOf(p.edgeEnd));
-  };
-  // The cuts' ends: a collision corner's start is its paired visual vertex,
-  // which must be in the region (featurePoint looks elsewhere otherwise).
-  std::array<int, 2 * PieceLocator::MaxLines> members{};
-  int memberCount = 0;
   if (region.crossings.size() > PieceLocator::MaxLines)
     return false;
+  auto planarOf = [&](int v) { return bulgedPoint(region.frame, parentParameters(v, split)); };
   for (CrossingPath& crossing : region.crossings)
+  {
     for (int end = 0; end < 2; ++end)
     {
       const int vertex = crossing.ends[end];
-      const int corner = cornerIndex(crossing.barycentric[end]);
-      SurfacePoint point;
-      if (corner < 0)
+      SurfacePoint p;
+      if (cornerIndex(crossing.barycentric[end]) < 0)
       {
         const EdgePoint& edgePoint = context.edgePoints[context.edgePointOf.at(vertex)];
-        point = edgePoint.visual[edgePoint.junction ? region.junctionSlot() : region.side];
+        p = edgePoint.visual[edgePoint.junction ? region.junctionSlot() : region.side];
       }
       else
       {
         const int paired = Paired[vertex][pairedSlot(vertex, region.side, region.cleft)];
         if (paired < 0)
           return false;
-        members[memberCount++] = paired;
-        point = SurfacePoint::atVertex(paired);
+        pairedEnds.push_back(paired);
+        p = SurfacePoint::atVertex(paired);
       }
-      crossing.planar[end] = pointOf(point);
+      crossing.planar[end] = p.isVertex()
+                               ? planarOf(p.vertex)
+                               : Vector2((1.0 - p.edgeParameter) * planarOf(p.edgeStart) +
+                                         p.edgeParameter * planarOf(p.edgeEnd));
     }
-  const double tolerance = OnLineTolerance * frameScale(frame);
-  PieceLocator locator;
-  if (!pieceLocator(region, split, tolerance, locator))
-    return false;
-  // Per line, the signed distance of a point of barycentric parameters x
-  // from it: g . x - c (the plane point is sum x_j frame_j). A vertex is far
-  // beyond twice the tolerance: traceCut's own distances, rounded
-  // otherwise, still put it off the line.
-  std::array<Vector3, PieceLocator::MaxLines> g;
-  std::array<double, PieceLocator::MaxLines> c;
-  for (int l = 0; l < locator.lineCount; ++l)
-  {
-    g[l] = Vector3(locator.normal[l].dot(frame[0]),
-      locator.normal[l].dot(frame[1]),
-      locator.normal[l].dot(frame[2]));
-    c[l] = locator.normal[l].dot(locator.from[l]);
   }
-  const double margin = 2.0 * tolerance;
-  // The cell of a vertex: bit l set on line l's positive side; -1 within
-  // the margin of a line, or not an inner vertex strictly inside the parent
-  // (those are bulged, and lie on the region's border). Each vertex once:
-  // kept + 1 in `cells` (all 0 between regions) until the pass ends.
+  return true;
+}
+
+// The far triangles of a region (RegionCut::far), found before it is laid
+// out along the lines its cuts will be traced on (crossingLines), so that
+// they are exactly the triangles traceCut would pass by and locatePieces
+// would place: three corners in one cell, each an inner vertex strictly
+// inside the parent (border vertices are bulged) beyond twice the on-line
+// tolerance of every line (traceCut's own distances, rounded otherwise,
+// still put it off the line). False, nothing separated, where the lines or
+// pieces are degenerate, a cut starts at a vertex outside the region, the
+// far triangles' orientations differ, or nothing lies far.
+bool CuttableVisualMesh::separateFarTriangles(RegionCut& region,
+  RegionWorker& worker,
+  const CutContext& context) const
+{
+  const CollisionTriangleSplit& split = context.cut->splits[region.split];
+  std::vector<int> pairedEnds;
+  const double tolerance = OnLineTolerance * frameScale(region.frame);
+  PieceLocator locator;
+  if (!crossingLines(region, context, pairedEnds) ||
+      !pieceLocator(region, split, tolerance, locator))
+    return false;
+  locator.expressInParameters(region.frame);
+  // Each vertex's cell once: kept + 1 in `cells` (all 0 between regions)
+  // until the pass ends; -1 for a vertex that is not far.
   std::vector<std::int8_t>& cells = worker.vertexCells;
   if (cells.size() < Mesh.vertexCount())
     cells.resize(Mesh.vertexCount(), 0);
@@ -1050,47 +1047,38 @@ bool CuttableVisualMesh::separateFarTriangles(RegionCut& region,
   seen.clear();
   auto cellOf = [&](int v)
   {
-    if (cells[v] != 0)
-      return cells[v] - 1;
-    seen.push_back(v);
-    int cell = -1;
-    const VisualVertexBinding& b = Bindings[v];
-    if (b.kind == BindingKind::CollisionTriangle && b.element == split.parent &&
-        b.parameters.minCoeff() > 0.0)
+    if (cells[v] == 0)
     {
-      cell = 0;
-      for (int l = 0; l < locator.lineCount && cell >= 0; ++l)
-      {
-        const double d = g[l].dot(b.parameters) - c[l];
-        cell = std::abs(d) <= margin ? -1 : cell | (d > 0.0 ? 1 : 0) << l;
-      }
+      const VisualVertexBinding& b = Bindings[v];
+      const bool inner = b.kind == BindingKind::CollisionTriangle && b.element == split.parent &&
+                         b.parameters.minCoeff() > 0.0;
+      cells[v] =
+        static_cast<std::int8_t>(1 + (inner ? locator.cellOf(b.parameters, 2.0 * tolerance) : -1));
+      seen.push_back(v);
     }
-    cells[v] = static_cast<std::int8_t>(cell + 1);
-    return cell;
+    return cells[v] - 1;
   };
-  // The frame's sides turn counterclockwise (planarFrame): the areas of
-  // the parameters' last two coordinates have the signs of the plane's.
   std::vector<int> near;
   near.reserve(region.triangles.size() / 4 + 16);
   region.nearPositions.clear();
   region.nearPositions.reserve(near.capacity());
   region.far.clear();
   region.far.reserve(region.triangles.size());
+  // The frame's sides turn counterclockwise (planarFrame): the areas of
+  // the parameters' last two coordinates have the signs of the plane's.
   double smallestArea = std::numeric_limits<double>::infinity();
   double largestArea = -smallestArea;
   for (std::size_t i = 0; i < region.triangles.size(); ++i)
   {
-    const int t = region.triangles[i];
-    const int position = static_cast<int>(i);
-    const Triangle& corners = Mesh.triangles[t];
+    const Triangle& corners = Mesh.triangles[region.triangles[i]];
     const int cell = cellOf(corners[0]);
     const int piece = cell >= 0 && cellOf(corners[1]) == cell && cellOf(corners[2]) == cell
                         ? locator.pieceOfSides[cell]
                         : -1;
     if (piece < 0)
     {
-      near.push_back(t);
-      region.nearPositions.push_back(position);
+      near.push_back(region.triangles[i]);
+      region.nearPositions.push_back(static_cast<int>(i));
       continue;
     }
     const Vector3& x0 = Bindings[corners[0]].parameters;
@@ -1099,23 +1087,23 @@ bool CuttableVisualMesh::separateFarTriangles(RegionCut& region,
     const double area = (x1[1] - x0[1]) * (x2[2] - x0[2]) - (x1[2] - x0[2]) * (x2[1] - x0[1]);
     smallestArea = std::min(smallestArea, area);
     largestArea = std::max(largestArea, area);
-    region.far.push_back({ t, piece, position });
+    region.far.push_back({ region.triangles[i], piece, static_cast<int>(i) });
   }
   for (int v : seen)
     cells[v] = 0;
-  for (int m = 0; m < memberCount; ++m)
-  {
-    const bool found = std::any_of(near.begin(),
-      near.end(),
-      [&](int t)
-      {
-        const Triangle& c = Mesh.triangles[t];
-        return c[0] == members[m] || c[1] == members[m] || c[2] == members[m];
-      });
-    if (!found)
-      region.far.clear();
-  }
-  if (region.far.empty() || !(smallestArea * largestArea > 0.0))
+  const bool endsNear = std::all_of(pairedEnds.begin(),
+    pairedEnds.end(),
+    [&](int paired)
+    {
+      return std::any_of(near.begin(),
+        near.end(),
+        [&](int t)
+        {
+          const Triangle& c = Mesh.triangles[t];
+          return c[0] == paired || c[1] == paired || c[2] == paired;
+        });
+    });
+  if (region.far.empty() || !endsNear || !(smallestArea * largestArea > 0.0))
   {
     region.far.clear();
     region.nearPositions.clear();

@@ -382,6 +382,9 @@ private:
   void traceRegion(RegionCut& region, RegionWorker& worker, const CutContext& context);
   /// A region vertex's barycentric parameters in the split's parent.
   Vector3 parentParameters(int v, const CollisionTriangleSplit& split) const;
+  bool crossingLines(RegionCut& region,
+    const CutContext& context,
+    std::vector<int>& pairedEnds) const;
   bool separateFarTriangles(RegionCut& region,
     RegionWorker& worker,
     const CutContext& context) const;

@@ -6,6 +6,7 @@
 #include "VisualMeshCut.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <unordered_map>
 #include <utility>
@@ -68,6 +69,32 @@ struct CuttableVisualMesh::PieceLocator
   std::array<Vector2, MaxLines> from;
   std::array<Vector2, MaxLines> normal;
   std::array<std::int8_t, 1u << MaxLines> pieceOfSides{};
+  /// The lines for points given by barycentric parameters x in the frame
+  /// (the plane point is sum x_j frame_j): distance g_l . x - c_l.
+  std::array<Vector3, MaxLines> g;
+  std::array<double, MaxLines> c{};
+  void expressInParameters(const std::array<Vector2, 3>& frame)
+  {
+    for (int l = 0; l < lineCount; ++l)
+    {
+      g[l] = Vector3(normal[l].dot(frame[0]), normal[l].dot(frame[1]), normal[l].dot(frame[2]));
+      c[l] = normal[l].dot(from[l]);
+    }
+  }
+  /// The cell of parameters x (bit l: on line l's positive side), -1
+  /// within `margin` of a line (expressInParameters first).
+  int cellOf(const Vector3& x, double margin) const
+  {
+    int cell = 0;
+    for (int l = 0; l < lineCount; ++l)
+    {
+      const double d = g[l].dot(x) - c[l];
+      if (std::abs(d) <= margin)
+        return -1;
+      cell |= (d > 0.0 ? 1 : 0) << l;
+    }
+    return cell;
+  }
 };
 
 /// A collision vertex made inside collision edge (a, b), a < b, at
