@@ -1974,17 +1974,22 @@ void creditRimDetours(const SharedRunSeparation& separated,
   std::size_t vertexCount,
   std::vector<int>& detours)
 {
+  const bool rimMoved = std::any_of(separated.aroundVertices.begin() + innerCount,
+    separated.aroundVertices.end(),
+    [](const std::vector<int>& vertices) { return !vertices.empty(); });
+  if (!rimMoved)
+  {
+    return;
+  }
   std::vector<char> around(vertexCount, 0);
-  bool any = false;
   for (std::size_t i = innerCount; i < ordered.size(); ++i)
   {
     for (int v : separated.aroundVertices[i])
     {
       around[v] = 1;
-      any = true;
     }
   }
-  for (std::size_t i = 0; i < innerCount && any; ++i)
+  for (std::size_t i = 0; i < innerCount; ++i)
   {
     for (std::size_t j = 1; j + 1 < ordered[i].size(); ++j)
     {

@@ -1043,7 +1043,7 @@ bool CuttableVisualMesh::separateFarTriangles(RegionCut& region,
   std::vector<std::int8_t>& cells = worker.vertexCells;
   if (cells.size() < Mesh.vertexCount())
     cells.resize(Mesh.vertexCount(), 0);
-  std::vector<int>& seen = worker.buffers.here;
+  std::vector<int>& seen = worker.buffers.cellVertices;
   seen.clear();
   auto cellOf = [&](int v)
   {

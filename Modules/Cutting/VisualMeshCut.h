@@ -298,6 +298,8 @@ private:
     std::vector<int> localTexture;
     /// listPiecesInRegionOrder: per piece of a split, its triangles.
     std::vector<std::vector<int>> pieceLists;
+    /// separateFarTriangles: the vertices whose cell it noted (to clear).
+    std::vector<int> cellVertices;
   };
   struct RegionCut;
   struct EdgePoint;
