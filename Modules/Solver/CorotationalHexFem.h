@@ -169,8 +169,13 @@ struct CorotationalHexFemSettings
   /// (540) 516 against 891 M; 250 (1,080) 1.34 against 3.51 G; over 1,005
   /// steps meniscus 1.05 against 0.98 G, steak 2.10 against 2.49 G, sheet
   /// 1.99 against 2.20 G. CPU per factorization at 4,158 (1,000
-  /// hexahedra) 22 against 97 ms.
-  int supernodalThreshold = 400;
+  /// hexahedra) 22 against 97 ms. Since the supernodal factor is solved
+  /// by our own loops rather than cholmod_solve2's BLAS call per supernode
+  /// (2026-11-28), its solves cost less too: replays of the meniscus
+  /// examination (312 unknowns) 2.99 G simplicial against 2.95 G
+  /// supernodal, cartilage palpation (70 nodes) 389 M against 395 M; hence
+  /// 250 (was 400).
+  int supernodalThreshold = 250;
   FactorOrdering factorOrdering = FactorOrdering::Automatic;
   /// Unknowns from which StaleFactorConjugateGradient refactorizes on a
   /// worker thread instead of inside the step. Not negative. At the
