@@ -1359,6 +1359,11 @@ void CorotationalHexFem::assembleElement(std::size_t e,
   // fixed node (a diagonal block, a == b, is half in).
   const auto& offsets = System->elementOffsets[e];
   double* values = System->matrix.valuePtr();
+  // The scale once per element, not once per block entry.
+  const Eigen::Matrix3d scaledRotation = stiffnessScale * rotation;
+  const Eigen::Matrix3d rotationTransposed = rotation.transpose();
+  Eigen::Matrix3d left;
+  Eigen::Matrix3d block;
   for (int a = 0; a < 8; ++a)
   {
     for (int b = 0; b < 8; ++b)
@@ -1368,9 +1373,8 @@ void CorotationalHexFem::assembleElement(std::size_t e,
       {
         continue; // entry (0, 2) is in the upper triangle of every block that has one
       }
-      const Eigen::Matrix3d block = stiffnessScale * rotation *
-                                    element.rest.stiffness.block<3, 3>(3 * a, 3 * b) *
-                                    rotation.transpose();
+      left.noalias() = scaledRotation * element.rest.stiffness.block<3, 3>(3 * a, 3 * b);
+      block.noalias() = left * rotationTransposed;
       for (int k = 0; k < 9; ++k)
       {
         if (blockOffsets[k] >= 0)
