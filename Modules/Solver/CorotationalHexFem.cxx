@@ -144,18 +144,16 @@ public:
   {
     SolveSupernodesHere = false;
     // (The analysis leaves a symbolic factor: its values come later.)
-    const cholmod_factor* analysed = m_cholmodFactor;
-    if (analysed == nullptr || !analysed->is_super || analysed->itype != CHOLMOD_INT ||
-        analysed->n == 0)
+    const cholmod_factor* factor = m_cholmodFactor;
+    if (factor == nullptr || !factor->is_super || factor->itype != CHOLMOD_INT || factor->n == 0)
       return;
-    const cholmod_factor& factor = *m_cholmodFactor;
-    const int* super = static_cast<const int*>(factor.super);
-    const int* rowStart = static_cast<const int*>(factor.pi);
     std::size_t entries = 0;
-    for (std::size_t k = 0; k < factor.nsuper; ++k)
-      entries += static_cast<std::size_t>(rowStart[k + 1] - rowStart[k]) *
-                 static_cast<std::size_t>(super[k + 1] - super[k]);
-    SolveSupernodesHere = entries < SupernodeHeightLimit * factor.n;
+    for (std::size_t k = 0; k < factor->nsuper; ++k)
+    {
+      const Supernode node = supernode(*factor, k);
+      entries += static_cast<std::size_t>(node.height) * static_cast<std::size_t>(node.columns);
+    }
+    SolveSupernodesHere = entries < SupernodeHeightLimit * factor->n;
   }
 
 private:
@@ -167,12 +165,8 @@ private:
            factor->xtype == CHOLMOD_REAL && factor->dtype == CHOLMOD_DOUBLE &&
            factor->itype == CHOLMOD_INT;
   }
-  /// A = P^T L L^T P solved over the supernodal factor's own arrays: each
-  /// supernode is a dense column block (its columns' rows, then the rows
-  /// below it), solved column by column in place. At the simulator's sizes
-  /// the supernodes hold a few unknowns each, and cholmod_solve2's BLAS
-  /// call per supernode and solve (dtrsv, dgemv) cost more than their
-  /// arithmetic: the punch replay spent 23 % of its instructions there.
+  /// A = P^T L L^T P solved over the supernodal factor's own arrays (see
+  /// chooseSolve for when).
   void solveSupernodal(const Eigen::VectorXd& right, Eigen::VectorXd& solution)
   {
     const cholmod_factor& factor = *m_cholmodFactor;
