@@ -2218,21 +2218,40 @@ namespace
 {
 
 /// The raster cells of the shadow's small holes (fewer than `largest`
-/// cells), grown by `margin` cells, and how many such holes there are.
+/// cells, or at most span x span cells and no longer than 2 span cells),
+/// grown by `margin` cells, and how many such holes there are.
 std::vector<char> tunnelFootprints(const ShadowRaster& raster,
   int largest,
+  int span,
   int margin,
   std::vector<Vector2>& centres)
 {
   std::vector<int> cellCounts;
   const std::vector<int> piece = emptyPieces(raster, cellCounts);
+  // Each hole's cell box: a hole no larger than a lattice cell is small
+  // however many raster cells it has; a tear's slit is long and stays.
+  std::vector<std::array<int, 4>> boxes(cellCounts.size(), { raster.width, raster.height, -1, -1 });
+  for (int j = 0; j < raster.height; ++j)
+    for (int i = 0; i < raster.width; ++i)
+    {
+      auto& box = boxes[std::max(0, piece[raster.at(i, j)])];
+      box = { std::min(box[0], i), std::min(box[1], j), std::max(box[2], i), std::max(box[3], j) };
+    }
+  std::vector<char> small(cellCounts.size(), 0);
+  for (std::size_t label = 1; label < cellCounts.size(); ++label)
+  {
+    const auto& box = boxes[label];
+    const int length = std::max(box[2] - box[0], box[3] - box[1]) + 1;
+    small[label] =
+      cellCounts[label] < largest || (cellCounts[label] <= span * span && length <= 2 * span);
+  }
   std::vector<Vector2> sums(cellCounts.size(), Vector2::Zero());
   std::vector<char> footprint(piece.size(), 0);
   for (int j = 0; j < raster.height; ++j)
     for (int i = 0; i < raster.width; ++i)
     {
       const int label = piece[raster.at(i, j)];
-      if (label <= 0 || cellCounts[label] >= largest)
+      if (label <= 0 || !small[label])
         continue;
       sums[label] += raster.origin + raster.cell * Vector2(i + 0.5, j + 0.5);
       for (int dj = -margin; dj <= margin; ++dj)
@@ -2241,13 +2260,26 @@ std::vector<char> tunnelFootprints(const ShadowRaster& raster,
             footprint[raster.at(i + di, j + dj)] = 1;
     }
   for (std::size_t label = 1; label < cellCounts.size(); ++label)
-    if (cellCounts[label] < largest)
+    if (small[label])
       centres.push_back(sums[label] / static_cast<double>(cellCounts[label]));
   return footprint;
 }
 
+/// The width, in raster cells, of the holes a collision mesh of
+/// `collisionVertexCount` vertices cannot hold: its spacing, about the
+/// square root of the shadow's area per vertex (0: none).
+int unrepresentableHoleSpan(const ShadowRaster& raster, int collisionVertexCount)
+{
+  if (collisionVertexCount <= 0)
+    return 0;
+  const auto covered = std::count(raster.inside.begin(), raster.inside.end(), char(1));
+  return static_cast<int>(std::sqrt(static_cast<double>(covered) / collisionVertexCount));
+}
+
 /// The tunnels seen along the thickness axis closed (r's genus set).
-TriangleMesh closeShadowTunnels(const TriangleMesh& visual, TunnelClosingReport& r)
+TriangleMesh closeShadowTunnels(const TriangleMesh& visual,
+  int collisionVertexCount,
+  TunnelClosingReport& r)
 {
   const ProjectedSurface surface = projectionAlongThickness(visual);
   // A 1024th of the extent: a perforation of a thin rim can be a few tenths
@@ -2256,8 +2288,11 @@ TriangleMesh closeShadowTunnels(const TriangleMesh& visual, TunnelClosingReport&
   constexpr int LargestTunnelCells = 1024; // 32 x 32 cells
   constexpr int MarginCells = 8;           // the walls' slant, the mouths' rims
   std::vector<Vector2> centres;
-  const std::vector<char> footprint =
-    tunnelFootprints(raster, LargestTunnelCells, MarginCells, centres);
+  const std::vector<char> footprint = tunnelFootprints(raster,
+    LargestTunnelCells,
+    unrepresentableHoleSpan(raster, collisionVertexCount),
+    MarginCells,
+    centres);
   r.tunnels = static_cast<int>(centres.size());
   if (centres.empty())
     return visual;
@@ -2303,7 +2338,9 @@ TriangleMesh closeShadowTunnels(const TriangleMesh& visual, TunnelClosingReport&
 
 } // namespace
 
-TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* report)
+TriangleMesh closeSmallTunnels(const TriangleMesh& visual,
+  TunnelClosingReport* report,
+  int collisionVertexCount)
 {
   TunnelClosingReport local;
   TunnelClosingReport& r = report ? *report : local;
@@ -2312,7 +2349,7 @@ TriangleMesh closeSmallTunnels(const TriangleMesh& visual, TunnelClosingReport* 
   r.genusBefore = r.genusAfter = TriangleMeshAdjacency(visual).closedSurfaceGenus();
   if (r.genusBefore <= 0)
     return visual;
-  TriangleMesh closed = closeShadowTunnels(visual, r);
+  TriangleMesh closed = closeShadowTunnels(visual, collisionVertexCount, r);
   if (r.genusAfter == 0)
     return closed;
   // Tunnels hidden from the axis (slanted through a staircase's riser,

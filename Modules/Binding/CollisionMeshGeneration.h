@@ -138,10 +138,16 @@ struct TunnelClosingReport
 /// surface around its two mouths are cut out and the two openings filled
 /// (repairTriangleMesh), kept only if the genus went down and the surface
 /// stays closed and manifold. Rim paths cannot separate the two sides of
-/// a surface with such tunnels (the binding refuses it). Returns the input
+/// a surface with such tunnels (the binding refuses it). With
+/// `collisionVertexCount` > 0, also the tunnels whose shadow is no larger
+/// than one cell of a collision mesh of that many vertices (the shadow's
+/// area per vertex) and no longer than two of its spacings: that mesh
+/// could not run around them (a lace-like segmentation of a sheet thinner
+/// than two slices); a tear's slit is longer and stays. Returns the input
 /// unchanged when it has no tunnel.
 THINTISSUEBINDING_EXPORT TriangleMesh closeSmallTunnels(const TriangleMesh& visual,
-  TunnelClosingReport* report = nullptr);
+  TunnelClosingReport* report = nullptr,
+  int collisionVertexCount = 0);
 
 /// The collision mid-surface of a closed, manifold, thin visual surface.
 /// Throws InvalidInputError naming the mesh: open, non-manifold or

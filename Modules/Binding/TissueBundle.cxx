@@ -258,8 +258,31 @@ void bindToMidSurface(const TriangleMesh& visual,
     attempts.rethrowFirst();
 }
 
+/// The tunnels closed before the preparation, and whether the collision
+/// mesh's resolution decided some (closeSmallTunnels with its vertex count).
+struct ClosedTunnels
+{
+  TunnelClosingReport report;
+  bool forCollisionMesh = false;
+};
+
+TissueBundle prepareClosed(const TriangleMesh& visual,
+  const ClosedTunnels& tunnels,
+  const TissuePreparationSettings& settings,
+  const ResolvedUnits& units,
+  const nlohmann::json& extra,
+  const GenerationProgress& progress,
+  std::chrono::steady_clock::time_point start);
+
 /// prepareTissue with the units already found; `extra` goes into the
-/// metadata (the piece of several).
+/// metadata (the piece of several). A segmentation's tunnels through a
+/// thin rim would join the two sides that the rim paths must separate:
+/// they are closed first, and reported. When the preparation then fails,
+/// the holes too small for the collision mesh to run around (a lace-like
+/// segmentation of a sheet thinner than two slices) are closed as well and
+/// it is tried again; the first error when that closes nothing more or
+/// fails too. Only a failing preparation changes: on the others the holes
+/// stay as the segmentation has them.
 TissueBundle prepareOne(const TriangleMesh& input,
   const TissuePreparationSettings& settings,
   const ResolvedUnits& units,
@@ -267,10 +290,44 @@ TissueBundle prepareOne(const TriangleMesh& input,
   const GenerationProgress& progress)
 {
   const auto start = std::chrono::steady_clock::now();
-  // A segmentation's tunnels through a thin rim would join the two sides
-  // that the rim paths must separate: closed first, and reported.
-  TunnelClosingReport tunnels;
-  const TriangleMesh visual = closeSmallTunnels(input, &tunnels);
+  ClosedTunnels tunnels;
+  const TriangleMesh visual = closeSmallTunnels(input, &tunnels.report);
+  try
+  {
+    return prepareClosed(visual, tunnels, settings, units, extra, progress, start);
+  }
+  catch (const InvalidInputError&)
+  {
+    const std::exception_ptr first = std::current_exception();
+    // A disk of V vertices has about 2V triangles.
+    const int collisionVertices = settings.collision.triangleCount > 0
+                                    ? (settings.collision.triangleCount + 1) / 2
+                                    : settings.collision.vertexCount;
+    ClosedTunnels more;
+    more.forCollisionMesh = true;
+    const TriangleMesh closedMore = closeSmallTunnels(input, &more.report, collisionVertices);
+    if (more.report.closed <= tunnels.report.closed)
+      throw;
+    try
+    {
+      return prepareClosed(closedMore, more, settings, units, extra, progress, start);
+    }
+    catch (const InvalidInputError&)
+    {
+      std::rethrow_exception(first);
+    }
+  }
+}
+
+/// prepareOne on the visual surface with its tunnels closed.
+TissueBundle prepareClosed(const TriangleMesh& visual,
+  const ClosedTunnels& tunnels,
+  const TissuePreparationSettings& settings,
+  const ResolvedUnits& units,
+  const nlohmann::json& extra,
+  const GenerationProgress& progress,
+  std::chrono::steady_clock::time_point start)
+{
   // Stages: hexahedra 0-0.05, collision mesh 0.05-0.25, binding 0.25-0.95,
   // quality 0.95-1.
   auto stage = [&](double from, double to)
@@ -303,13 +360,15 @@ TissueBundle prepareOne(const TriangleMesh& input,
   {
     metadata["refusedCollisionMeshes"] = refused;
   }
-  if (tunnels.genusBefore > 0)
+  const TunnelClosingReport& closed = tunnels.report;
+  if (closed.genusBefore > 0)
   {
-    metadata["tunnels"] = { { "genusBefore", tunnels.genusBefore },
-      { "genusAfter", tunnels.genusAfter },
-      { "found", tunnels.tunnels },
-      { "closed", tunnels.closed },
-      { "places", tunnels.changes } };
+    metadata["tunnels"] = { { "genusBefore", closed.genusBefore },
+      { "genusAfter", closed.genusAfter },
+      { "found", closed.tunnels },
+      { "closed", closed.closed },
+      { "places", closed.changes },
+      { "forCollisionMesh", tunnels.forCollisionMesh } };
   }
   metadata["quality"] = nlohmann::json::parse(bundle.quality.toJson());
   metadata.update(extra);

@@ -9,6 +9,7 @@
 #include "MeshImport.h"
 #include "MeshPrimitives.h"
 #include "MeshQueries.h"
+#include "MeshValidation.h"
 #include "ThinSheetModel.h"
 #include "ThinTissueTestSupport.h"
 #include "TissueBundle.h"
@@ -305,6 +306,39 @@ TEST(CollisionMeshGeneration, ATearIsNotATunnel)
   EXPECT_EQ(kept.triangles, torn.visual.triangles);
   EXPECT_EQ(kept.textureCorners.size(), kept.triangles.size());
   EXPECT_NO_THROW(kept.checkConsistency());
+  // Nor for the preparation's collision mesh: the gap is longer than two
+  // of its spacings.
+  EXPECT_EQ(closeSmallTunnels(torn.visual, &report, 105).triangles, torn.visual.triangles);
+}
+
+// A lace-like segmentation (a sheet thinner than two slices) is perforated
+// by holes a few millimetres across: more than the 32 x 32 raster cells of
+// a segmentation's pinholes, but less than a cell of a coarse collision
+// mesh, which cannot run around them (the binding then refused: "collision
+// vertex 54 finds its positive visual vertex, and ... its negative one, on
+// one piece"). Given the collision mesh's vertex count, closeSmallTunnels
+// closes such a hole too; a tear's slit, longer than two spacings, stays,
+// and so does the hole for a collision mesh fine enough to hold it.
+TEST(CollisionMeshGeneration, HolesACollisionMeshCannotHoldAreClosed)
+{
+  std::vector<std::string> mask(30, std::string(40, '#'));
+  for (int y = 10; y < 13; ++y)
+    mask[y].replace(10, 3, "..."); // a hole 3 x 3 mm
+  for (int y = 8; y < 22; ++y)
+    mask[y].replace(28, 1, "."); // a slit 1 x 14 mm
+  const TriangleMesh plate = extrudedMask(mask, 1.0);
+  auto closedBy = [&](int collisionVertexCount)
+  {
+    TunnelClosingReport report;
+    const TriangleMesh closed = closeSmallTunnels(plate, &report, collisionVertexCount);
+    EXPECT_EQ(report.genusBefore, 2);
+    EXPECT_EQ(report.changes.size(), static_cast<std::size_t>(report.closed));
+    EXPECT_TRUE(validateTriangleMesh(closed).isClosedOutwardSingleSurface());
+    return report.genusAfter;
+  };
+  EXPECT_EQ(closedBy(0), 2);    // too large for a pinhole
+  EXPECT_EQ(closedBy(105), 1);  // spacing about 3.3 mm: the hole goes
+  EXPECT_EQ(closedBy(2000), 2); // spacing about 0.8 mm: it can stay
 }
 
 TEST(CollisionMeshGeneration, SheetAndMeniscus)
