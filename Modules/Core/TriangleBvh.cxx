@@ -37,6 +37,57 @@ BoundingBox TriangleBvh::triangleBox(const std::vector<Vector3>& positions,
   return BoundingBox(a.cwiseMin(b).cwiseMin(c) - margin, a.cwiseMax(b).cwiseMax(c) + margin);
 }
 
+namespace
+{
+/// Whether triangle `t` has the (unordered) edge {a, b} as a side before
+/// corner `before`.
+bool hasSide(const Triangle& t, int a, int b, int before = 3)
+{
+  for (int j = 0; j < before; ++j)
+  {
+    const int c = t[j], d = t[(j + 1) % 3];
+    if ((c == a && d == b) || (c == b && d == a))
+      return true;
+  }
+  return false;
+}
+} // namespace
+
+std::vector<std::uint8_t> TriangleBvh::lowestTriangleEdges(const std::vector<Triangle>& triangles,
+  int vertexCount)
+{
+  // Each vertex's triangles by increasing index (a bucket pass, not a sort
+  // of the 3T edges: this runs for every tree of a large visual mesh).
+  std::vector<int> start(static_cast<std::size_t>(vertexCount) + 1, 0);
+  for (const Triangle& t : triangles)
+    for (int v : t)
+      ++start[v + 1];
+  for (int v = 0; v < vertexCount; ++v)
+    start[v + 1] += start[v];
+  std::vector<int> star(start.back());
+  std::vector<int> cursor(start.begin(), start.end() - 1);
+  for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+    for (int v : triangles[t])
+      star[cursor[v]++] = t;
+  // Side k of t is owned when no lower triangle, and no earlier side of t,
+  // is the same edge (the lowest (triangle, corner) of each edge).
+  std::vector<std::uint8_t> owned(triangles.size(), 0);
+  for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+  {
+    const Triangle& tri = triangles[t];
+    for (int k = 0; k < 3; ++k)
+    {
+      const int a = tri[k], b = tri[(k + 1) % 3];
+      bool lowest = !hasSide(tri, a, b, k);
+      for (int i = start[a]; lowest && i < start[a + 1] && star[i] < t; ++i)
+        lowest = !hasSide(triangles[star[i]], a, b);
+      if (lowest)
+        owned[t] |= static_cast<std::uint8_t>(1u << k);
+    }
+  }
+  return owned;
+}
+
 //------------------------------------------------------------------------------
 void TriangleBvh::build(const std::vector<Vector3>& positions,
   const std::vector<Triangle>& triangles,
@@ -67,31 +118,7 @@ void TriangleBvh::build(const std::vector<Vector3>& positions,
 
   this->Triangles = triangles;
   this->ContactDistance = contactDistance;
-  // Edge owners: sort (edge, triangle, corner) so each edge's lowest
-  // triangle comes first.
-  {
-    std::vector<std::array<std::int64_t, 2>> edges; // (edge key, 4 t + k)
-    edges.reserve(3 * triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        const std::int64_t a = triangles[t][k];
-        const std::int64_t b = triangles[t][(k + 1) % 3];
-        edges.push_back({ { std::min(a, b) * vertexCount + std::max(a, b),
-          4 * static_cast<std::int64_t>(t) + k } });
-      }
-    }
-    std::sort(edges.begin(), edges.end());
-    this->OwnedEdges.assign(triangles.size(), 0);
-    for (std::size_t i = 0; i < edges.size(); ++i)
-    {
-      if (i == 0 || edges[i][0] != edges[i - 1][0])
-      {
-        this->OwnedEdges[edges[i][1] / 4] |= static_cast<std::uint8_t>(1u << (edges[i][1] % 4));
-      }
-    }
-  }
+  this->OwnedEdges = lowestTriangleEdges(triangles, vertexCount);
   this->Nodes.clear();
   const int count = static_cast<int>(triangles.size());
   this->Order.resize(count);

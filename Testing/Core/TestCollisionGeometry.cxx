@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <set>
 #include <utility>
@@ -147,6 +148,40 @@ TEST(TriangleBvh, OverlapQueriesMatchBruteForce)
       const BoundingBox box = randomBox(random);
       EXPECT_EQ(bvhOverlap(bvh, box), bruteForceOverlap(mesh, margin, box)) << "seed " << seed;
     }
+  }
+}
+
+// Each edge has one owner, its lowest (triangle, corner): on random
+// triangles over few vertices (shared, non-manifold and repeated edges,
+// triangles that repeat a vertex) the tree's owners match the brute-force
+// minimum over every side of every triangle.
+TEST(TriangleBvh, EdgeOwnersAreTheLowestTriangles)
+{
+  for (unsigned seed = 1; seed <= 5; ++seed)
+  {
+    std::mt19937 random(seed);
+    const int vertexCount = 12 + static_cast<int>(seed);
+    std::uniform_int_distribution<int> vertex(0, vertexCount - 1);
+    std::vector<Vector3> positions;
+    for (int v = 0; v < vertexCount; ++v)
+      positions.emplace_back(0.1 * v, std::sin(v), std::cos(3.0 * v));
+    std::vector<Triangle> triangles;
+    for (int t = 0; t < 200; ++t)
+      triangles.push_back({ vertex(random), vertex(random), vertex(random) });
+    TriangleBvh bvh;
+    bvh.build(positions, triangles, {}, 0.0);
+    std::map<std::pair<int, int>, int> lowest; // edge -> 4 t + k
+    for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+      for (int k = 0; k < 3; ++k)
+      {
+        const int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+        lowest.emplace(std::make_pair(std::min(a, b), std::max(a, b)), 4 * t + k);
+      }
+    std::vector<std::uint8_t> expected(triangles.size(), 0);
+    for (const auto& [edge, owner] : lowest)
+      expected[owner / 4] |= static_cast<std::uint8_t>(1u << (owner % 4));
+    for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+      EXPECT_EQ(bvh.ownedEdges(t), expected[t]) << "seed " << seed << ", triangle " << t;
   }
 }
 
