@@ -2228,22 +2228,32 @@ std::vector<char> tunnelFootprints(const ShadowRaster& raster,
 {
   std::vector<int> cellCounts;
   const std::vector<int> piece = emptyPieces(raster, cellCounts);
-  // Each hole's cell box: a hole no larger than a lattice cell is small
-  // however many raster cells it has; a tear's slit is long and stays.
-  std::vector<std::array<int, 4>> boxes(cellCounts.size(), { raster.width, raster.height, -1, -1 });
-  for (int j = 0; j < raster.height; ++j)
-    for (int i = 0; i < raster.width; ++i)
-    {
-      auto& box = boxes[std::max(0, piece[raster.at(i, j)])];
-      box = { std::min(box[0], i), std::min(box[1], j), std::max(box[2], i), std::max(box[3], j) };
-    }
   std::vector<char> small(cellCounts.size(), 0);
   for (std::size_t label = 1; label < cellCounts.size(); ++label)
+    small[label] = cellCounts[label] < largest;
+  if (span > 0)
   {
-    const auto& box = boxes[label];
-    const int length = std::max(box[2] - box[0], box[3] - box[1]) + 1;
-    small[label] =
-      cellCounts[label] < largest || (cellCounts[label] <= span * span && length <= 2 * span);
+    // Each hole's cell box: a hole no larger than a lattice cell is small
+    // however many raster cells it has; a tear's slit is long and stays.
+    std::vector<std::array<int, 4>> boxes(
+      cellCounts.size(), { raster.width, raster.height, -1, -1 });
+    for (int j = 0; j < raster.height; ++j)
+      for (int i = 0; i < raster.width; ++i)
+      {
+        const int label = piece[raster.at(i, j)];
+        if (label <= 0)
+          continue;
+        auto& box = boxes[label];
+        box = {
+          std::min(box[0], i), std::min(box[1], j), std::max(box[2], i), std::max(box[3], j)
+        };
+      }
+    for (std::size_t label = 1; label < cellCounts.size(); ++label)
+    {
+      const auto& box = boxes[label];
+      const int length = std::max(box[2] - box[0], box[3] - box[1]) + 1;
+      small[label] |= cellCounts[label] <= span * span && length <= 2 * span;
+    }
   }
   std::vector<Vector2> sums(cellCounts.size(), Vector2::Zero());
   std::vector<char> footprint(piece.size(), 0);
