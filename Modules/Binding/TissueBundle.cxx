@@ -266,60 +266,7 @@ struct ClosedTunnels
   bool forCollisionMesh = false;
 };
 
-TissueBundle prepareClosed(const TriangleMesh& visual,
-  const ClosedTunnels& tunnels,
-  const TissuePreparationSettings& settings,
-  const ResolvedUnits& units,
-  const nlohmann::json& extra,
-  const GenerationProgress& progress,
-  std::chrono::steady_clock::time_point start);
-
-/// prepareTissue with the units already found; `extra` goes into the
-/// metadata (the piece of several). A segmentation's tunnels through a
-/// thin rim would join the two sides that the rim paths must separate:
-/// they are closed first, and reported. When the preparation then fails,
-/// the holes too small for the collision mesh to run around (a lace-like
-/// segmentation of a sheet thinner than two slices) are closed as well and
-/// it is tried again; the first error when that closes nothing more or
-/// fails too. Only a failing preparation changes: on the others the holes
-/// stay as the segmentation has them.
-TissueBundle prepareOne(const TriangleMesh& input,
-  const TissuePreparationSettings& settings,
-  const ResolvedUnits& units,
-  const nlohmann::json& extra,
-  const GenerationProgress& progress)
-{
-  const auto start = std::chrono::steady_clock::now();
-  ClosedTunnels tunnels;
-  const TriangleMesh visual = closeSmallTunnels(input, &tunnels.report);
-  try
-  {
-    return prepareClosed(visual, tunnels, settings, units, extra, progress, start);
-  }
-  catch (const InvalidInputError&)
-  {
-    const std::exception_ptr first = std::current_exception();
-    // A disk of V vertices has about 2V triangles.
-    const int collisionVertices = settings.collision.triangleCount > 0
-                                    ? (settings.collision.triangleCount + 1) / 2
-                                    : settings.collision.vertexCount;
-    ClosedTunnels more;
-    more.forCollisionMesh = true;
-    const TriangleMesh closedMore = closeSmallTunnels(input, &more.report, collisionVertices);
-    if (more.report.closed <= tunnels.report.closed)
-      throw;
-    try
-    {
-      return prepareClosed(closedMore, more, settings, units, extra, progress, start);
-    }
-    catch (const InvalidInputError&)
-    {
-      std::rethrow_exception(first);
-    }
-  }
-}
-
-/// prepareOne on the visual surface with its tunnels closed.
+/// prepareOne (below) on the visual surface with its tunnels closed.
 TissueBundle prepareClosed(const TriangleMesh& visual,
   const ClosedTunnels& tunnels,
   const TissuePreparationSettings& settings,
@@ -377,6 +324,51 @@ TissueBundle prepareClosed(const TriangleMesh& visual,
   bundle.metadata = metadata.dump(2);
   announce(1.0, "done");
   return bundle;
+}
+
+/// prepareTissue with the units already found; `extra` goes into the
+/// metadata (the piece of several). A segmentation's tunnels through a
+/// thin rim would join the two sides that the rim paths must separate:
+/// they are closed first, and reported. When the preparation then fails,
+/// the holes too small for the collision mesh to run around (a lace-like
+/// segmentation of a sheet thinner than two slices) are closed as well and
+/// it is tried again; the first error when that closes nothing more or
+/// fails too. Only a failing preparation changes: on the others the holes
+/// stay as the segmentation has them.
+TissueBundle prepareOne(const TriangleMesh& input,
+  const TissuePreparationSettings& settings,
+  const ResolvedUnits& units,
+  const nlohmann::json& extra,
+  const GenerationProgress& progress)
+{
+  const auto start = std::chrono::steady_clock::now();
+  ClosedTunnels tunnels;
+  const TriangleMesh visual = closeSmallTunnels(input, &tunnels.report);
+  try
+  {
+    return prepareClosed(visual, tunnels, settings, units, extra, progress, start);
+  }
+  catch (const InvalidInputError&)
+  {
+    const std::exception_ptr first = std::current_exception();
+    // A disk of V vertices has about 2V triangles.
+    const int collisionVertices = settings.collision.triangleCount > 0
+                                    ? (settings.collision.triangleCount + 1) / 2
+                                    : settings.collision.vertexCount;
+    ClosedTunnels more;
+    more.forCollisionMesh = true;
+    const TriangleMesh closedMore = closeSmallTunnels(input, &more.report, collisionVertices);
+    if (more.report.closed <= tunnels.report.closed)
+      throw;
+    try
+    {
+      return prepareClosed(closedMore, more, settings, units, extra, progress, start);
+    }
+    catch (const InvalidInputError&)
+    {
+      std::rethrow_exception(first);
+    }
+  }
 }
 
 /// The dropped fragments, as metadata, with a warning each.

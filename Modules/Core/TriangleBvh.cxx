@@ -1,6 +1,7 @@
 #include "TriangleBvh.h"
 
 #include "ThinTissueError.h"
+#include "TriangleMeshAdjacency.h"
 
 #include <algorithm>
 #include <array>
@@ -39,54 +40,28 @@ BoundingBox TriangleBvh::triangleBox(const std::vector<Vector3>& positions,
 
 namespace
 {
-/// Whether triangle `t` has the (unordered) edge {a, b} as a side before
-/// corner `before`.
-bool hasSide(const Triangle& t, int a, int b, int before = 3)
-{
-  for (int j = 0; j < before; ++j)
-  {
-    const int c = t[j], d = t[(j + 1) % 3];
-    if ((c == a && d == b) || (c == b && d == a))
-      return true;
-  }
-  return false;
-}
-} // namespace
-
-std::vector<std::uint8_t> TriangleBvh::lowestTriangleEdges(const std::vector<Triangle>& triangles,
+/// Bit k of entry t set where triangle t is the lowest of its edge k (the
+/// first side of the lowest triangle: the adjacency lists an edge's
+/// triangles by increasing index).
+std::vector<std::uint8_t> lowestTriangleEdges(const std::vector<Triangle>& triangles,
   int vertexCount)
 {
-  // Each vertex's triangles by increasing index (a bucket pass, not a sort
-  // of the 3T edges: this runs for every tree of a large visual mesh).
-  std::vector<int> start(static_cast<std::size_t>(vertexCount) + 1, 0);
-  for (const Triangle& t : triangles)
-    for (int v : t)
-      ++start[v + 1];
-  for (int v = 0; v < vertexCount; ++v)
-    start[v + 1] += start[v];
-  std::vector<int> star(start.back());
-  std::vector<int> cursor(start.begin(), start.end() - 1);
-  for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
-    for (int v : triangles[t])
-      star[cursor[v]++] = t;
-  // Side k of t is owned when no lower triangle, and no earlier side of t,
-  // is the same edge (the lowest (triangle, corner) of each edge).
+  const TriangleMeshAdjacency adjacency(static_cast<std::size_t>(vertexCount), triangles);
   std::vector<std::uint8_t> owned(triangles.size(), 0);
   for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
   {
-    const Triangle& tri = triangles[t];
+    const std::array<int, 3>& edges = adjacency.triangleEdges(t);
     for (int k = 0; k < 3; ++k)
     {
-      const int a = tri[k], b = tri[(k + 1) % 3];
-      bool lowest = !hasSide(tri, a, b, k);
-      for (int i = start[a]; lowest && i < start[a + 1] && star[i] < t; ++i)
-        lowest = !hasSide(triangles[star[i]], a, b);
-      if (lowest)
+      const bool firstSide =
+        std::find(edges.begin(), edges.begin() + k, edges[k]) == edges.begin() + k;
+      if (firstSide && *adjacency.edgeTrianglesBegin(edges[k]) == t)
         owned[t] |= static_cast<std::uint8_t>(1u << k);
     }
   }
   return owned;
 }
+} // namespace
 
 //------------------------------------------------------------------------------
 void TriangleBvh::build(const std::vector<Vector3>& positions,

@@ -110,9 +110,6 @@ private:
   static constexpr int StackSize = 96;
 
   int buildRange(int begin, int end, std::vector<Vector3>& centroids);
-  /// OwnedEdges of `triangles` (indices checked).
-  static std::vector<std::uint8_t> lowestTriangleEdges(const std::vector<Triangle>& triangles,
-    int vertexCount);
   bool descendFirst(int nodeA, const TriangleBvh& other, int nodeB) const;
 
   std::vector<Node> Nodes;
