@@ -3,6 +3,7 @@
 #include "BlockSymmetricProduct.h"
 
 #include "LinearAlgebraLibrary.h"
+#include "SolutionHistory.h"
 #include "ThinTissueError.h"
 
 #include <Eigen/CholmodSupport>
@@ -73,6 +74,13 @@ void checkSettings(const CorotationalHexFemSettings& s)
   {
     problem << "multigrid rebuild iterations must be at least 1 (got "
             << s.multigridRebuildIterations << ")";
+  }
+  else if (s.warmStartSolutions < 1 || s.warmStartSolutions > SolutionHistory::MaximumDepth ||
+           s.warmStartIterations < 0)
+  {
+    problem << "warm-start solutions must be between 1 and " << SolutionHistory::MaximumDepth
+            << " and warm-start iterations not negative (got " << s.warmStartSolutions << ", "
+            << s.warmStartIterations << ")";
   }
   if (problem.tellp() != 0)
   {
@@ -423,7 +431,11 @@ struct CorotationalHexFem::LinearSystem
   std::vector<int> diagonalOffsets;
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;
-  Eigen::VectorXd previousSolution;
+  /// The last steps' solutions (the newest in node terms across topology
+  /// changes): the first guess of the next solve.
+  SolutionHistory history;
+  /// Iterations of the last conjugate-gradient solve.
+  int lastSolveIterations = 0;
   std::vector<Vector3> forces;
   std::unique_ptr<CholmodFactor> factor = std::make_unique<CholmodFactor>();
   /// A factor exists for the present pattern (for the Cholmod kind: of the
@@ -519,6 +531,7 @@ CorotationalHexFem::CorotationalHexFem(const HexahedralMesh& mesh,
   mesh.checkConsistency();
   checkSettings(settings);
   System->multigrid = SmoothedAggregation(settings.multigrid);
+  System->history.setDepth(settings.warmStartSolutions);
   checkMaterial(material, "co-rotational FEM of '" + mesh.name + "'");
   if (!mesh.fixedNodes.empty())
   {
@@ -666,6 +679,7 @@ void CorotationalHexFem::setSettings(const CorotationalHexFemSettings& settings)
     System->multigridValid = false;
     System->multigrid = SmoothedAggregation(settings.multigrid);
   }
+  System->history.setDepth(settings.warmStartSolutions);
   Settings = settings;
 }
 
@@ -962,7 +976,7 @@ void CorotationalHexFem::prepareSystem()
   }
   // The last solution in node terms, the warm start of the next solve.
   const std::vector<int> previousDofOfNode = std::move(s.dofOfNode);
-  const Eigen::VectorXd previousSolution = std::move(s.previousSolution);
+  const Eigen::VectorXd previousSolution = std::move(s.history.newest());
   // Simulated nodes: free and used by an active hexahedron.
   std::vector<std::uint8_t> used(Positions.size(), 0);
   for (const auto& element : Elements)
@@ -990,7 +1004,9 @@ void CorotationalHexFem::prepareSystem()
   colourElements();
   s.rhs.resize(s.dofCount);
   s.solution.setZero(s.dofCount);
-  s.previousSolution.setZero(s.dofCount);
+  s.history.keepNewestOnly(); // older solutions are of the old numbering
+  Eigen::VectorXd& newest = s.history.newest();
+  newest.setZero(s.dofCount);
   // A node copied since starts from what it was copied from.
   const auto previousDof = [&](int n)
   {
@@ -1005,7 +1021,7 @@ void CorotationalHexFem::prepareSystem()
     const int from = s.dofOfNode[n] >= 0 ? previousDof(static_cast<int>(n)) : -1;
     if (from >= 0)
     {
-      s.previousSolution.segment<3>(s.dofOfNode[n]) = previousSolution.segment<3>(from);
+      newest.segment<3>(s.dofOfNode[n]) = previousSolution.segment<3>(from);
     }
   }
   s.forces.assign(Positions.size(), Vector3::Zero());
@@ -1649,8 +1665,12 @@ bool CorotationalHexFem::iteratePreconditioned(Eigen::VectorXd& x,
 {
   LinearSystem& s = *System;
   const double target = Settings.conjugateGradientTolerance * s.rhs.norm();
-  x = s.previousSolution;
-  s.blockProduct.multiply(s.matrix, x, s.product);
+  s.history.firstGuess([&s](const Eigen::VectorXd& v, Eigen::VectorXd& y)
+    { s.blockProduct.multiply(s.matrix, v, y); },
+    s.rhs,
+    x,
+    s.product,
+    s.lastSolveIterations >= Settings.warmStartIterations ? Settings.warmStartSolutions : 1);
   s.residual = s.rhs - s.product;
   precondition(s.residual, s.preconditioned);
   s.direction = s.preconditioned;
@@ -1671,6 +1691,7 @@ bool CorotationalHexFem::iteratePreconditioned(Eigen::VectorXd& x,
     s.direction = s.preconditioned + (next / rho) * s.direction;
     rho = next;
   }
+  s.lastSolveIterations = iterations;
   return s.residual.norm() <= target;
 }
 
@@ -2042,7 +2063,7 @@ const Eigen::VectorXd& CorotationalHexFem::systemRightHandSide() const
 
 const Eigen::VectorXd& CorotationalHexFem::previousSystemSolution() const
 {
-  return System->previousSolution;
+  return System->history.newest();
 }
 
 void CorotationalHexFem::multiplySystem(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
@@ -2145,7 +2166,7 @@ SolverResult CorotationalHexFem::finishCoupledStep(const Eigen::VectorXd& soluti
       }
     }
   }
-  s.previousSolution = solution;
+  s.history.push(solution);
   for (std::size_t n = 0; n < Positions.size(); ++n)
   {
     const int dof = s.dofOfNode[n];

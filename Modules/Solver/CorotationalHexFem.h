@@ -220,6 +220,15 @@ struct CorotationalHexFemSettings
   /// matrix, at the start of the next solve: deterministic) after a solve
   /// that needed more iterations than this. At least 1.
   int multigridRebuildIterations = 40;
+  /// Conjugate gradients start from the combination of the last
+  /// `warmStartSolutions` step solutions that is closest to the new one in
+  /// the energy norm (SolutionHistory.h: one product with the matrix per
+  /// solution); 1 starts from the last solution alone. From 1 to 4.
+  /// Measured in SolutionHistory.h.
+  int warmStartSolutions = 3;
+  /// ... after a solve that needed at least this many iterations (a
+  /// transient); after fewer, from the last solution alone. Not negative.
+  int warmStartIterations = 3;
   /// Threads of the element assembly (rotations, forces, rotated
   /// stiffness): 0 for all cores (TBB's default), 1 for the calling thread
   /// only. Not negative. The results are the same bits for any count (the
