@@ -25,6 +25,15 @@ struct Problem
   double energy(const Eigen::VectorXd& x) const { return 0.5 * x.dot(matrix * x) - rhs.dot(x); }
 };
 
+Eigen::VectorXd randomVector(int size, std::mt19937& random)
+{
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd v(size);
+  for (int i = 0; i < size; ++i)
+    v(i) = normal(random);
+  return v;
+}
+
 Problem randomProblem(int size, std::mt19937& random)
 {
   std::normal_distribution<double> normal;
@@ -34,19 +43,8 @@ Problem randomProblem(int size, std::mt19937& random)
       m(i, j) = normal(random);
   Problem p;
   p.matrix = m * m.transpose() + size * Eigen::MatrixXd::Identity(size, size);
-  p.rhs.resize(size);
-  for (int i = 0; i < size; ++i)
-    p.rhs(i) = normal(random);
+  p.rhs = randomVector(size, random);
   return p;
-}
-
-Eigen::VectorXd randomVector(int size, std::mt19937& random)
-{
-  std::normal_distribution<double> normal;
-  Eigen::VectorXd v(size);
-  for (int i = 0; i < size; ++i)
-    v(i) = normal(random);
-  return v;
 }
 
 } // namespace
