@@ -798,45 +798,10 @@ GeodesicPathFinder::GeodesicPathFinder(const TriangleMesh& mesh,
     }
   }
   // Vertex-manifold: the triangles around each vertex form one fan.
-  std::vector<int> fan;
-  std::vector<int> parent;
+  std::vector<int> scratch;
   for (int v = 0; v < static_cast<int>(mesh.vertexCount()); ++v)
   {
-    fan.assign(adjacency.vertexTrianglesBegin(v), adjacency.vertexTrianglesEnd(v));
-    parent.resize(fan.size());
-    for (std::size_t i = 0; i < fan.size(); ++i)
-    {
-      parent[i] = static_cast<int>(i);
-    }
-    auto root = [&](int i)
-    {
-      while (parent[i] != i)
-      {
-        i = parent[i] = parent[parent[i]];
-      }
-      return i;
-    };
-    std::size_t fans = fan.size();
-    for (std::size_t i = 0; i < fan.size(); ++i)
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        const Triangle& c = mesh.triangles[fan[i]];
-        const int across = adjacency.neighbourAcross(fan[i], k);
-        if (across < 0 || (c[k] != v && c[(k + 1) % 3] != v))
-        {
-          continue;
-        }
-        const auto j = std::lower_bound(fan.begin(), fan.end(), across);
-        const int a = root(static_cast<int>(i));
-        const int b = root(static_cast<int>(j - fan.begin()));
-        if (a != b)
-        {
-          parent[std::max(a, b)] = std::min(a, b);
-          --fans;
-        }
-      }
-    }
+    const int fans = adjacency.vertexFanCount(v, scratch);
     if (fans > 1)
     {
       throw InvalidInputError("geodesic paths: " + label + " is not vertex-manifold: vertex " +

@@ -37,37 +37,48 @@ int findRoot(std::vector<int>& parent, int x)
   return x;
 }
 
-/// Number of fans around vertex v (1 for a manifold vertex): triangles
-/// around v are grouped when they share an edge incident to v.
-int countVertexFans(const TriangleMeshAdjacency& adjacency, int v, std::vector<int>& scratchParent)
+/// Triangles with the vertices of a lower-numbered one, counted; the
+/// location is the lowest-numbered such triangle and the lowest of its
+/// vertex set. Triangles with the same vertices (in any order, repeated
+/// vertices included) have the same three edges, so each is found among the
+/// triangles of its first edge: linear time, where sorting the vertex sets
+/// cost a third of validating a 20K-vertex segmentation.
+void recordDuplicateTriangles(const TriangleMesh& mesh,
+  const TriangleMeshAdjacency& adjacency,
+  ValidationFinding& duplicates)
 {
-  const int* begin = adjacency.vertexTrianglesBegin(v);
-  const int count = adjacency.vertexTriangleCount(v);
-  scratchParent.resize(count);
-  std::iota(scratchParent.begin(), scratchParent.end(), 0);
-  for (int i = 0; i < count; ++i)
+  auto vertexSet = [&](int t)
   {
-    for (int k = 0; k < 3; ++k)
+    std::array<int, 3> sorted = mesh.triangles[t];
+    std::sort(sorted.begin(), sorted.end());
+    return sorted;
+  };
+  const int triangleCount = static_cast<int>(mesh.triangleCount());
+  for (int t = 0; t < triangleCount; ++t)
+  {
+    const int edge = adjacency.triangleEdges(t)[0];
+    if (adjacency.edgeTriangleCount(edge) < 2)
     {
-      const int e = adjacency.triangleEdges(begin[i])[k];
-      const auto& ends = adjacency.edge(e);
-      if (ends[0] != v && ends[1] != v)
+      continue;
+    }
+    const std::array<int, 3> own = vertexSet(t);
+    int original = -1;
+    for (const int* u = adjacency.edgeTrianglesBegin(edge); u != adjacency.edgeTrianglesEnd(edge);
+         ++u)
+    {
+      if (*u < t && (original < 0 || *u < original) && vertexSet(*u) == own)
       {
-        continue;
-      }
-      for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
-      {
-        const int j = static_cast<int>(std::find(begin, begin + count, *t) - begin);
-        scratchParent[findRoot(scratchParent, i)] = findRoot(scratchParent, j);
+        original = *u;
       }
     }
+    if (original < 0)
+    {
+      continue;
+    }
+    record(duplicates,
+      "triangle " + std::to_string(t) + " (same vertices as triangle " + std::to_string(original) +
+        ", at vertex " + std::to_string(mesh.triangles[t][0]) + ")");
   }
-  int fans = 0;
-  for (int i = 0; i < count; ++i)
-  {
-    fans += findRoot(scratchParent, i) == i ? 1 : 0;
-  }
-  return fans;
 }
 
 } // namespace
@@ -141,7 +152,6 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
   const double minimumArea = degenerateAreaTolerance * diagonal * diagonal;
 
   // Degenerate and duplicate triangles.
-  std::vector<std::array<int, 3>> sortedTriangles(mesh.triangleCount());
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
   {
     const Triangle& tri = mesh.triangles[t];
@@ -151,45 +161,8 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
       record(report.degenerateTriangles,
         "triangle " + std::to_string(t) + " (at vertex " + std::to_string(tri[0]) + ")");
     }
-    std::array<int, 3> sorted = tri;
-    std::sort(sorted.begin(), sorted.end());
-    sortedTriangles[t] = sorted;
   }
-  {
-    // Sort by vertex set; equal neighbours are duplicates. The reported
-    // location is the lowest-numbered duplicate.
-    std::vector<int> order(mesh.triangleCount());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(),
-      order.end(),
-      [&](int a, int b)
-      {
-        return sortedTriangles[a] != sortedTriangles[b] ? sortedTriangles[a] < sortedTriangles[b]
-                                                        : a < b;
-      });
-    int firstDuplicate = -1;
-    int firstOriginal = -1;
-    for (std::size_t i = 1; i < order.size(); ++i)
-    {
-      if (sortedTriangles[order[i]] != sortedTriangles[order[i - 1]])
-      {
-        continue;
-      }
-      ++report.duplicateTriangles.count;
-      if (firstDuplicate < 0 || order[i] < firstDuplicate)
-      {
-        firstDuplicate = order[i];
-        firstOriginal = order[i - 1];
-      }
-    }
-    if (firstDuplicate >= 0)
-    {
-      report.duplicateTriangles.firstLocation =
-        "triangle " + std::to_string(firstDuplicate) + " (same vertices as triangle " +
-        std::to_string(firstOriginal) + ", at vertex " +
-        std::to_string(mesh.triangles[firstDuplicate][0]) + ")";
-    }
-  }
+  recordDuplicateTriangles(mesh, adjacency, report.duplicateTriangles);
 
   // Edge classes and orientation.
   for (std::size_t e = 0; e < adjacency.edgeCount(); ++e)
@@ -238,7 +211,7 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
     {
       record(report.unreferencedVertices, "vertex " + std::to_string(v));
     }
-    else if (countVertexFans(adjacency, vi, scratch) > 1)
+    else if (adjacency.vertexFanCount(vi, scratch) > 1)
     {
       record(report.nonManifoldVertices, "vertex " + std::to_string(v));
     }

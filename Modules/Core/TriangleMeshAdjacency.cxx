@@ -2,9 +2,109 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <numeric>
+#include <optional>
+#include <vector>
 
 namespace thintissue
 {
+
+namespace
+{
+
+/// Union-find root.
+int findRoot(std::vector<int>& parent, int x)
+{
+  while (parent[x] != x)
+  {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+/// Number of fans around vertex v (1 for a manifold vertex): triangles
+/// around v are grouped when they share an edge incident to v.
+int countFansByUnion(const TriangleMeshAdjacency& adjacency, int v, std::vector<int>& scratchParent)
+{
+  const int* begin = adjacency.vertexTrianglesBegin(v);
+  const int count = adjacency.vertexTriangleCount(v);
+  scratchParent.resize(count);
+  std::iota(scratchParent.begin(), scratchParent.end(), 0);
+  for (int i = 0; i < count; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const int e = adjacency.triangleEdges(begin[i])[k];
+      const auto& ends = adjacency.edge(e);
+      if (ends[0] != v && ends[1] != v)
+      {
+        continue;
+      }
+      for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
+      {
+        const int j = static_cast<int>(std::find(begin, begin + count, *t) - begin);
+        scratchParent[findRoot(scratchParent, i)] = findRoot(scratchParent, j);
+      }
+    }
+  }
+  int fans = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    fans += findRoot(scratchParent, i) == i ? 1 : 0;
+  }
+  return fans;
+}
+
+/// Whether the triangles around v form one closed fan, walked from one to
+/// the next across the edges through v; nothing when the walk cannot tell
+/// (an edge through v without exactly two triangles, a triangle with v
+/// twice or without two edges through v). Most vertices of a closed
+/// surface are settled this way, in a few steps each.
+std::optional<bool> walkOneClosedFan(const TriangleMeshAdjacency& adjacency, int v)
+{
+  const int* begin = adjacency.vertexTrianglesBegin(v);
+  const int count = adjacency.vertexTriangleCount(v);
+  int triangle = begin[0];
+  int entry = -1;
+  for (int steps = 1; steps <= count; ++steps)
+  {
+    int through[2] = { -1, -1 };
+    int found = 0;
+    for (int e : adjacency.triangleEdges(triangle))
+    {
+      const auto& ends = adjacency.edge(e);
+      if ((ends[0] == v) != (ends[1] == v))
+      {
+        if (found == 2)
+        {
+          return std::nullopt;
+        }
+        through[found++] = e;
+      }
+    }
+    if (found != 2 || through[0] == through[1])
+    {
+      return std::nullopt;
+    }
+    const int exit = through[0] == entry ? through[1] : through[0];
+    if (adjacency.edgeTriangleCount(exit) != 2)
+    {
+      return std::nullopt;
+    }
+    const int* pair = adjacency.edgeTrianglesBegin(exit);
+    const int next = pair[0] == triangle ? pair[1] : pair[0];
+    if (next == begin[0])
+    {
+      return steps == count;
+    }
+    entry = exit;
+    triangle = next;
+  }
+  return std::nullopt;
+}
+
+} // namespace
 
 TriangleMeshAdjacency::TriangleMeshAdjacency(const TriangleMesh& mesh)
   : TriangleMeshAdjacency(mesh.vertexCount(), mesh.triangles)
@@ -141,6 +241,19 @@ int TriangleMeshAdjacency::closedSurfaceGenus() const
   const long euler =
     vertices - static_cast<long>(Edges.size()) + static_cast<long>(TriangleEdges.size());
   return static_cast<int>((2 - euler) / 2);
+}
+
+int TriangleMeshAdjacency::vertexFanCount(int v, std::vector<int>& scratch) const
+{
+  if (vertexTriangleCount(v) == 0)
+  {
+    return 0;
+  }
+  if (walkOneClosedFan(*this, v).value_or(false))
+  {
+    return 1;
+  }
+  return countFansByUnion(*this, v, scratch);
 }
 
 } // namespace thintissue

@@ -62,6 +62,12 @@ public:
   /// it (a tear's gap, a segmentation's tunnels), from its Euler
   /// characteristic over the vertices that have a triangle.
   int closedSurfaceGenus() const;
+  /// Fans of triangles around vertex v: its triangles grouped when they
+  /// share an edge through v (1 for a manifold vertex, more at a bow-tie, 0
+  /// for an unreferenced vertex). `scratch` is reused between calls. Most
+  /// vertices of a closed surface are settled by walking round the vertex
+  /// once; the others by union-find.
+  int vertexFanCount(int v, std::vector<int>& scratch) const;
 
 private:
   std::vector<std::array<int, 2>> Edges;

@@ -708,6 +708,21 @@ TEST(GeodesicPaths, InvalidInputIsRejected)
   bowTie.triangles = { { 0, 1, 2 }, { 0, 3, 4 } };
   const TriangleMeshAdjacency bowTieAdjacency(bowTie);
   EXPECT_THROW(construct(bowTie, bowTieAdjacency), InvalidInputError);
+  // Two closed tetrahedra sharing vertex 0: each fan closes on itself.
+  TriangleMesh closedBowTie;
+  closedBowTie.positions = {
+    { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, -1 }
+  };
+  closedBowTie.triangles = { { 0, 2, 1 },
+    { 0, 1, 3 },
+    { 0, 3, 2 },
+    { 1, 2, 3 },
+    { 0, 5, 4 },
+    { 0, 4, 6 },
+    { 0, 6, 5 },
+    { 4, 5, 6 } };
+  const TriangleMeshAdjacency closedBowTieAdjacency(closedBowTie);
+  EXPECT_THROW(construct(closedBowTie, closedBowTieAdjacency), InvalidInputError);
   TriangleMesh flat = bowTie;
   flat.triangles = { { 0, 1, 2 }, { 1, 0, 3 } };
   const TriangleMeshAdjacency flatAdjacency(flat);
