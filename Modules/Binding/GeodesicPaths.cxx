@@ -798,10 +798,9 @@ GeodesicPathFinder::GeodesicPathFinder(const TriangleMesh& mesh,
     }
   }
   // Vertex-manifold: the triangles around each vertex form one fan.
-  std::vector<int> scratch;
   for (int v = 0; v < static_cast<int>(mesh.vertexCount()); ++v)
   {
-    const int fans = adjacency.vertexFanCount(v, scratch);
+    const int fans = adjacency.vertexFanCount(v);
     if (fans > 1)
     {
       throw InvalidInputError("geodesic paths: " + label + " is not vertex-manifold: vertex " +

@@ -2,9 +2,9 @@
 
 #include "ThinTissueError.h"
 #include "TriangleMeshAdjacency.h"
+#include "UnionFind.h"
 
 #include <algorithm>
-#include <numeric>
 #include <sstream>
 
 namespace thintissue
@@ -24,17 +24,6 @@ std::string edgeLocation(const std::array<int, 2>& edge)
 {
   return "edge " + std::to_string(edge[0]) + "-" + std::to_string(edge[1]) + " (at vertex " +
          std::to_string(edge[0]) + ")";
-}
-
-/// Union-find for connected pieces.
-int findRoot(std::vector<int>& parent, int x)
-{
-  while (parent[x] != x)
-  {
-    parent[x] = parent[parent[x]];
-    x = parent[x];
-  }
-  return x;
 }
 
 /// Triangles with the vertices of a lower-numbered one, counted; the
@@ -203,7 +192,6 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
   }
 
   // Vertices: unreferenced and non-manifold (bow-tie).
-  std::vector<int> scratch;
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
   {
     const int vi = static_cast<int>(v);
@@ -211,26 +199,24 @@ MeshValidationReport validateTriangleMesh(const TriangleMesh& mesh, double degen
     {
       record(report.unreferencedVertices, "vertex " + std::to_string(v));
     }
-    else if (adjacency.vertexFanCount(vi, scratch) > 1)
+    else if (adjacency.vertexFanCount(vi) > 1)
     {
       record(report.nonManifoldVertices, "vertex " + std::to_string(v));
     }
   }
 
   // Connected pieces over triangles sharing vertices.
-  std::vector<int> parent(mesh.vertexCount());
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind joined(mesh.vertexCount());
   for (const Triangle& tri : mesh.triangles)
   {
-    const int root = findRoot(parent, tri[0]);
-    parent[findRoot(parent, tri[1])] = root;
-    parent[findRoot(parent, tri[2])] = findRoot(parent, tri[0]);
+    joined.unite(tri[0], tri[1]);
+    joined.unite(tri[0], tri[2]);
   }
   std::size_t pieces = 0;
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
   {
     const int vi = static_cast<int>(v);
-    if (adjacency.vertexTriangleCount(vi) > 0 && findRoot(parent, vi) == vi)
+    if (adjacency.vertexTriangleCount(vi) > 0 && joined.find(vi) == vi)
     {
       ++pieces;
     }

@@ -1,8 +1,9 @@
 #include "TriangleMeshAdjacency.h"
 
+#include "UnionFind.h"
+
 #include <algorithm>
 #include <cstdint>
-#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -12,30 +13,17 @@ namespace thintissue
 namespace
 {
 
-/// Union-find root.
-int findRoot(std::vector<int>& parent, int x)
-{
-  while (parent[x] != x)
-  {
-    parent[x] = parent[parent[x]];
-    x = parent[x];
-  }
-  return x;
-}
-
 /// Number of fans around vertex v (1 for a manifold vertex): triangles
 /// around v are grouped when they share an edge incident to v.
-int countFansByUnion(const TriangleMeshAdjacency& adjacency, int v, std::vector<int>& scratchParent)
+int countFansByUnion(const TriangleMeshAdjacency& adjacency, int v)
 {
   const int* begin = adjacency.vertexTrianglesBegin(v);
   const int count = adjacency.vertexTriangleCount(v);
-  scratchParent.resize(count);
-  std::iota(scratchParent.begin(), scratchParent.end(), 0);
+  UnionFind fans(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i)
   {
-    for (int k = 0; k < 3; ++k)
+    for (int e : adjacency.triangleEdges(begin[i]))
     {
-      const int e = adjacency.triangleEdges(begin[i])[k];
       const auto& ends = adjacency.edge(e);
       if (ends[0] != v && ends[1] != v)
       {
@@ -43,17 +31,16 @@ int countFansByUnion(const TriangleMeshAdjacency& adjacency, int v, std::vector<
       }
       for (const int* t = adjacency.edgeTrianglesBegin(e); t != adjacency.edgeTrianglesEnd(e); ++t)
       {
-        const int j = static_cast<int>(std::find(begin, begin + count, *t) - begin);
-        scratchParent[findRoot(scratchParent, i)] = findRoot(scratchParent, j);
+        fans.unite(i, static_cast<int>(std::find(begin, begin + count, *t) - begin));
       }
     }
   }
-  int fans = 0;
+  int roots = 0;
   for (int i = 0; i < count; ++i)
   {
-    fans += findRoot(scratchParent, i) == i ? 1 : 0;
+    roots += fans.find(i) == i ? 1 : 0;
   }
-  return fans;
+  return roots;
 }
 
 /// Whether the triangles around v form one closed fan, walked from one to
@@ -243,7 +230,7 @@ int TriangleMeshAdjacency::closedSurfaceGenus() const
   return static_cast<int>((2 - euler) / 2);
 }
 
-int TriangleMeshAdjacency::vertexFanCount(int v, std::vector<int>& scratch) const
+int TriangleMeshAdjacency::vertexFanCount(int v) const
 {
   if (vertexTriangleCount(v) == 0)
   {
@@ -253,7 +240,7 @@ int TriangleMeshAdjacency::vertexFanCount(int v, std::vector<int>& scratch) cons
   {
     return 1;
   }
-  return countFansByUnion(*this, v, scratch);
+  return countFansByUnion(*this, v);
 }
 
 } // namespace thintissue

@@ -64,10 +64,9 @@ public:
   int closedSurfaceGenus() const;
   /// Fans of triangles around vertex v: its triangles grouped when they
   /// share an edge through v (1 for a manifold vertex, more at a bow-tie, 0
-  /// for an unreferenced vertex). `scratch` is reused between calls. Most
-  /// vertices of a closed surface are settled by walking round the vertex
-  /// once; the others by union-find.
-  int vertexFanCount(int v, std::vector<int>& scratch) const;
+  /// for an unreferenced vertex). Most vertices of a closed surface are
+  /// settled by walking round the vertex once; the others by union-find.
+  int vertexFanCount(int v) const;
 
 private:
   std::vector<std::array<int, 2>> Edges;
