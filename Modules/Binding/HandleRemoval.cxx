@@ -4,6 +4,7 @@
 #include "MeshRepair.h"
 #include "MeshValidation.h"
 #include "TriangleMeshAdjacency.h"
+#include "UnionFind.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,13 +117,6 @@ private:
   int Stamp = 0;
 };
 
-int findRoot(std::vector<int>& parent, int x)
-{
-  while (parent[x] != x)
-    x = parent[x] = parent[parent[x]];
-  return x;
-}
-
 /// Whether the region holds a loop that does not separate the surface:
 /// two of its border loops open onto the same piece of the rest.
 bool holdsHandle(const TriangleMesh& mesh,
@@ -134,8 +128,7 @@ bool holdsHandle(const TriangleMesh& mesh,
   for (int t : region)
     inRegion[t] = 1;
   // Pieces of the rest (triangles across edges), by union-find.
-  std::vector<int> piece(n);
-  std::iota(piece.begin(), piece.end(), 0);
+  UnionFind piece(n);
   for (std::size_t t = 0; t < n; ++t)
   {
     if (inRegion[t])
@@ -144,13 +137,12 @@ bool holdsHandle(const TriangleMesh& mesh,
     {
       const int u = adjacency.neighbourAcross(static_cast<int>(t), k);
       if (u >= 0 && !inRegion[u])
-        piece[findRoot(piece, static_cast<int>(t))] = findRoot(piece, u);
+        piece.unite(static_cast<int>(t), u);
     }
   }
   // Border loops of the region: its border vertices joined along its
   // border edges; each loop opens onto the piece beyond its edges.
-  std::vector<int> loop(mesh.vertexCount());
-  std::iota(loop.begin(), loop.end(), 0);
+  UnionFind loop(mesh.vertexCount());
   std::vector<std::pair<int, int>> borderEdges; // (vertex, piece beyond)
   for (int t : region)
   {
@@ -161,13 +153,13 @@ bool holdsHandle(const TriangleMesh& mesh,
         continue;
       const int a = mesh.triangles[t][k];
       const int b = mesh.triangles[t][(k + 1) % 3];
-      loop[findRoot(loop, a)] = findRoot(loop, b);
-      borderEdges.emplace_back(a, findRoot(piece, u));
+      loop.unite(a, b);
+      borderEdges.emplace_back(a, piece.find(u));
     }
   }
   std::vector<std::pair<int, int>> loopPiece;
   for (const auto& [vertex, beyond] : borderEdges)
-    loopPiece.emplace_back(findRoot(loop, vertex), beyond);
+    loopPiece.emplace_back(loop.find(vertex), beyond);
   std::sort(loopPiece.begin(), loopPiece.end());
   loopPiece.erase(std::unique(loopPiece.begin(), loopPiece.end()), loopPiece.end());
   std::vector<int> pieces;
