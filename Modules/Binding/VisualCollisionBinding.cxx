@@ -1083,6 +1083,8 @@ struct PathRequest
 {
   int edge;
   int side;
+  /// The collision edge's vertices (lower, higher), for messages.
+  std::array<int, 2> collisionEnds{ -1, -1 };
   int source = -1;
   int target = -1;
   /// An inner edge joining two border vertices: both ends on the rim.
@@ -1181,6 +1183,85 @@ SideRegions sideRegions(const RemeshedSurface& rimmed,
   return regions;
 }
 
+/// Where a path request is, for an error about it: its collision edge and
+/// side, and what usually parts the surface there.
+std::string pathContext(const PathRequest& r, bool onHalf)
+{
+  const std::string edge =
+    "(" + std::to_string(r.collisionEnds[0]) + ", " + std::to_string(r.collisionEnds[1]) + ")";
+  if (!onHalf)
+  {
+    return " (the rim path of collision edge " + edge +
+           "; the visual surface is in pieces there: prepare each piece as its own tissue)";
+  }
+  const char* half = r.half == SurfaceHalf::Positive
+                       ? "positive"
+                       : (r.half == SurfaceHalf::Negative ? "negative" : "cleft's");
+  return std::string(" (the ") + half + " path of collision edge " + edge +
+         ", which stays on the " + half +
+         " half of the visual surface between the rim paths; that half is in pieces there: "
+         "tunnels through the tissue, or a rim path cutting part of it off; a finer collision "
+         "mesh or segmentation may help)";
+}
+
+/// One requested path: on the whole surface, or with `regions` on its half
+/// (a chord along the rim paths moved off them, `detour` counting the rim
+/// vertices it was moved round).
+void computeOnePath(const GeodesicPathFinder& finder,
+  const PathRequest& r,
+  const SideRegions* regions,
+  SurfacePath& path,
+  int& detour)
+{
+  if (regions == nullptr)
+  {
+    path = finder.shortestPath(r.source, r.target);
+    return;
+  }
+  const int slot = halfIndex(r.half);
+  path = finder.shortestPathWithin(r.source, r.target, regions->halves[slot]);
+  // Between two rim points the shortest path on the half may run all
+  // along the rim paths (a thin corner triangle: around the corner is
+  // barely longer than over it), leaving the triangle's region no width.
+  // Such a chord is recomputed off the rim paths: on the core of its
+  // half and the triangles around its own two ends, if they connect.
+  const bool alongTheRim = r.chord && std::all_of(path.points.begin(),
+                                        path.points.end(),
+                                        [&](const SurfacePoint& point) {
+                                          return point.isVertex() && regions->onRim[point.vertex];
+                                        });
+  if (!alongTheRim)
+  {
+    return;
+  }
+  std::vector<int> ends;
+  for (int v : { r.source, r.target })
+  {
+    for (const int* t = regions->adjacency->vertexTrianglesBegin(v);
+         t != regions->adjacency->vertexTrianglesEnd(v);
+         ++t)
+    {
+      if (regions->halves[slot][*t])
+      {
+        ends.push_back(*t);
+      }
+    }
+  }
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+  try
+  {
+    const auto alongRim = static_cast<int>(path.points.size());
+    path = finder.shortestPathWithin(r.source, r.target, regions->cores[slot], ends);
+    detour = std::max(1, alongRim - 2);
+  }
+  catch (const InvalidInputError&)
+  {
+    // The core does not connect the ends: the path along the rim stays
+    // (the flood fill reports the region without width).
+  }
+}
+
 /// The requested paths, in parallel or not (same result), in blocks so that
 /// progress (and abort) is reported from this thread between `from` and
 /// `to`. With `regions`, an inner path stays on its half. `detours`: per path, the vertices of the
@@ -1199,52 +1280,13 @@ std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
   auto computePath = [&](std::size_t k)
   {
     const PathRequest& r = requests[k];
-    if (regions == nullptr)
-    {
-      paths[k] = finder.shortestPath(r.source, r.target);
-      return;
-    }
-    const int slot = halfIndex(r.half);
-    paths[k] = finder.shortestPathWithin(r.source, r.target, regions->halves[slot]);
-    // Between two rim points the shortest path on the half may run all
-    // along the rim paths (a thin corner triangle: around the corner is
-    // barely longer than over it), leaving the triangle's region no width.
-    // Such a chord is recomputed off the rim paths: on the core of its
-    // half and the triangles around its own two ends, if they connect.
-    const bool alongTheRim = r.chord && std::all_of(paths[k].points.begin(),
-                                          paths[k].points.end(),
-                                          [&](const SurfacePoint& point) {
-                                            return point.isVertex() && regions->onRim[point.vertex];
-                                          });
-    if (!alongTheRim)
-    {
-      return;
-    }
-    std::vector<int> ends;
-    for (int v : { r.source, r.target })
-    {
-      for (const int* t = regions->adjacency->vertexTrianglesBegin(v);
-           t != regions->adjacency->vertexTrianglesEnd(v);
-           ++t)
-      {
-        if (regions->halves[slot][*t])
-        {
-          ends.push_back(*t);
-        }
-      }
-    }
-    std::sort(ends.begin(), ends.end());
-    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
     try
     {
-      const auto alongRim = static_cast<int>(paths[k].points.size());
-      paths[k] = finder.shortestPathWithin(r.source, r.target, regions->cores[slot], ends);
-      detours[k] = std::max(1, alongRim - 2);
+      computeOnePath(finder, r, regions, paths[k], detours[k]);
     }
-    catch (const InvalidInputError&)
+    catch (const InvalidInputError& error)
     {
-      // The core does not connect the ends: the path along the rim stays
-      // (the flood fill reports the region without width).
+      throw InvalidInputError(std::string(error.what()) + pathContext(r, regions != nullptr));
     }
   };
   // At most 20 blocks, at least 32 paths each: every block wakes the
@@ -2119,6 +2161,7 @@ void collectPathRequests(const VisualCollisionBinding& binding,
         continue; // a border edge has its rim path only, a junction all three
       }
       PathRequest r{ static_cast<int>(e), side };
+      r.collisionEnds = { std::min(edge[0], edge[1]), std::max(edge[0], edge[1]) };
       r.chord = count > 1 && chord;
       setRequestEnds(binding, topology, r);
       (count == 1 ? rimRequests : innerRequests).push_back(r);

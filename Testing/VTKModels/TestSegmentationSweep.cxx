@@ -498,6 +498,20 @@ TEST(SegmentationSweep, ACrossingRoundAnOpeningOfTheSurfaceSaysSo)
       << failure;
   }
 }
+// Coarse sheet 1009 (genus 208 as segmented; 1.3-1.5 mm slices of a 2 mm
+// sheet) still fails: a side path's half of the visual surface is in
+// pieces. The error said only "vertices 148 and 226 are not connected";
+// it now names the collision edge, its side and what parts a half.
+TEST(SegmentationSweep, APathWhoseHalfIsInPiecesNamesItsEdgeAndSide)
+{
+  const std::string failure =
+    prepareAndCheck(segmented(tissueModel("Sheet"), sweepCase(1009, true)));
+  if (failure.find("are not connected") != std::string::npos)
+  {
+    EXPECT_NE(failure.find(" path of collision edge ("), std::string::npos) << failure;
+    EXPECT_NE(failure.find("half of the visual surface"), std::string::npos) << failure;
+  }
+}
 // A segmentation sharpens the meniscus's inner rim into a wedge that thins
 // slower than a quarter of a radius per unit outward: border collision
 // vertex 6 sat where the tissue still had a radius (0.16 mm) and its rim
