@@ -620,11 +620,11 @@ std::optional<SurfacePath> straightPathOnSurface(const TriangleMesh& mesh,
   return std::nullopt;
 }
 
-InvalidInputError notConnected(const TriangleMesh& mesh, int source, int target)
+DisconnectedPathError notConnected(const TriangleMesh& mesh, int source, int target)
 {
-  return InvalidInputError("geodesic path on " + meshLabel(mesh) + ": vertices " +
-                           std::to_string(source) + " and " + std::to_string(target) +
-                           " are not connected");
+  return DisconnectedPathError("geodesic path on " + meshLabel(mesh) + ": vertices " +
+                               std::to_string(source) + " and " + std::to_string(target) +
+                               " are not connected");
 }
 
 /// A point of CGAL's path as it is reported, before snapping.
@@ -1009,9 +1009,9 @@ SurfacePath GeodesicPathFinder::shortestPathOn(int source,
     PatchPath found = shortestPathOnPatch(Mesh, Adjacency, mask, patch, table, source, target);
     if (!patch.hasRim && !found.found)
     {
-      throw InvalidInputError("geodesic path on " + meshLabel(Mesh) + ": no path on the surface " +
-                              "from vertex " + std::to_string(source) + " to vertex " +
-                              std::to_string(target));
+      throw DisconnectedPathError("geodesic path on " + meshLabel(Mesh) +
+                                  ": no path on the surface " + "from vertex " +
+                                  std::to_string(source) + " to vertex " + std::to_string(target));
     }
     if (!patch.hasRim || (found.found && !found.touchesRim))
     {

@@ -55,6 +55,7 @@
 
 #include "SurfacePath.h"
 #include "ThinTissueBindingModule.h"
+#include "ThinTissueError.h"
 #include "TriangleMeshAdjacency.h"
 
 #include <cstddef>
@@ -75,6 +76,15 @@ struct GeodesicPathStatistics
   bool sleeve = false;
   std::size_t sleeveTriangles = 0;
   int sleeveReroutes = 0;
+};
+
+/// No path on the surface (or on the triangles a mask allows) joins the two
+/// vertices: they lie on different pieces. A caller that knows why the
+/// surface is in pieces there can say so.
+class THINTISSUEBINDING_EXPORT DisconnectedPathError : public InvalidInputError
+{
+public:
+  using InvalidInputError::InvalidInputError;
 };
 
 /// How GeodesicPathFinder finds a path that is not a straight segment.
@@ -110,7 +120,8 @@ public:
   /// is within 1e-12 of an end is that vertex; coinciding consecutive points
   /// are merged; `length` sums the straight segments. source == target
   /// gives a one-point path of length 0. Throws InvalidInputError when a
-  /// vertex index is out of range or the two vertices are not connected.
+  /// vertex index is out of range, DisconnectedPathError when the two
+  /// vertices are not connected.
   SurfacePath shortestPath(int source,
     int target,
     GeodesicPathStatistics* statistics = nullptr) const;
@@ -120,8 +131,8 @@ public:
   /// (one entry per mesh triangle), which acts as a surface with border
   /// where unmarked triangles begin: the binding keeps each side's paths on
   /// that side of a thin surface (5.2.2). Otherwise as shortestPath; throws
-  /// InvalidInputError when the two vertices are not connected through
-  /// marked triangles or the mask has the wrong size.
+  /// DisconnectedPathError when the two vertices are not connected through
+  /// marked triangles, InvalidInputError when the mask has the wrong size.
   SurfacePath shortestPathWithin(int source,
     int target,
     const std::vector<char>& allowedTriangles,

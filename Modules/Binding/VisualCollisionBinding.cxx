@@ -1184,24 +1184,28 @@ SideRegions sideRegions(const RemeshedSurface& rimmed,
 }
 
 /// Where a path request is, for an error about it: its collision edge and
-/// side, and what usually parts the surface there.
-std::string pathContext(const PathRequest& r, bool onHalf)
+/// side and, when no path joins its ends (`disconnected`), what usually
+/// parts the surface there.
+std::string pathContext(const PathRequest& r, bool onHalf, bool disconnected)
 {
   const std::string edge =
     "(" + std::to_string(r.collisionEnds[0]) + ", " + std::to_string(r.collisionEnds[1]) + ")";
   if (!onHalf)
   {
     return " (the rim path of collision edge " + edge +
-           "; the visual surface is in pieces there: prepare each piece as its own tissue)";
+           (disconnected ? "; the visual surface is in pieces there: prepare each piece as its "
+                           "own tissue)"
+                         : ")");
   }
   const char* half = r.half == SurfaceHalf::Positive
                        ? "positive"
                        : (r.half == SurfaceHalf::Negative ? "negative" : "cleft's");
   return std::string(" (the ") + half + " path of collision edge " + edge +
-         ", which stays on the " + half +
-         " half of the visual surface between the rim paths; that half is in pieces there: "
-         "tunnels through the tissue, or a rim path cutting part of it off; a finer collision "
-         "mesh or segmentation may help)";
+         ", which stays on the " + half + " half of the visual surface between the rim paths" +
+         (disconnected ? "; that half is in pieces there: tunnels through the tissue, or a rim "
+                         "path cutting part of it off; a finer collision mesh or segmentation may "
+                         "help)"
+                       : ")");
 }
 
 /// One requested path: on the whole surface, or with `regions` on its half
@@ -1255,7 +1259,7 @@ void computeOnePath(const GeodesicPathFinder& finder,
     path = finder.shortestPathWithin(r.source, r.target, regions->cores[slot], ends);
     detour = std::max(1, alongRim - 2);
   }
-  catch (const InvalidInputError&)
+  catch (const DisconnectedPathError&)
   {
     // The core does not connect the ends: the path along the rim stays
     // (the flood fill reports the region without width).
@@ -1284,9 +1288,15 @@ std::vector<SurfacePath> computePaths(const GeodesicPathFinder& finder,
     {
       computeOnePath(finder, r, regions, paths[k], detours[k]);
     }
+    catch (const DisconnectedPathError& error)
+    {
+      throw DisconnectedPathError(
+        std::string(error.what()) + pathContext(r, regions != nullptr, true));
+    }
     catch (const InvalidInputError& error)
     {
-      throw InvalidInputError(std::string(error.what()) + pathContext(r, regions != nullptr));
+      throw InvalidInputError(
+        std::string(error.what()) + pathContext(r, regions != nullptr, false));
     }
   };
   // At most 20 blocks, at least 32 paths each: every block wakes the

@@ -666,11 +666,13 @@ TEST(GeodesicPaths, InvalidInputIsRejected)
   pieces.positions.emplace_back(-5.0, -5.0, 0.0);
   const TriangleMeshAdjacency piecesAdjacency(pieces);
   const GeodesicPathFinder piecesFinder(pieces, piecesAdjacency);
-  EXPECT_THROW(piecesFinder.shortestPath(0, n + 1), InvalidInputError);
-  EXPECT_THROW(piecesFinder.shortestPath(n + 1, 0), InvalidInputError);
-  EXPECT_THROW(piecesFinder.edgePathLength(0, n + 1), InvalidInputError);
-  EXPECT_THROW(
-    piecesFinder.shortestPath(0, static_cast<int>(pieces.vertexCount()) - 1), InvalidInputError);
+  // Ends on different pieces: DisconnectedPathError, which callers that
+  // know why the surface parts there (the binding's halves) extend.
+  EXPECT_THROW(piecesFinder.shortestPath(0, n + 1), DisconnectedPathError);
+  EXPECT_THROW(piecesFinder.shortestPath(n + 1, 0), DisconnectedPathError);
+  EXPECT_THROW(piecesFinder.edgePathLength(0, n + 1), DisconnectedPathError);
+  EXPECT_THROW(piecesFinder.shortestPath(0, static_cast<int>(pieces.vertexCount()) - 1),
+    DisconnectedPathError);
   try
   {
     piecesFinder.shortestPath(0, n + 1);
