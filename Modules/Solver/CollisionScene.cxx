@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <array>
@@ -906,8 +907,8 @@ void CollisionScene::collectReactions()
 
 SolverResult CollisionScene::step()
 {
-  detectContacts();
   Implementation& in = *Internal;
+  assembleWhileDetecting();
   SolverResult result;
   auto fail = [&](std::size_t solver, const std::string& message)
   {
@@ -948,6 +949,34 @@ SolverResult CollisionScene::step()
   }
   collectReactions();
   return result;
+}
+
+void CollisionScene::assembleWhileDetecting()
+{
+  // The elastic part of each solver's step (rotations, element stiffness
+  // and forces) does not depend on the contacts, and the contacts do not
+  // depend on it: it is assembled on another thread while they are found,
+  // the same bits on any thread.
+  Implementation& in = *Internal;
+  tbb::task_group elastic;
+  elastic.run(
+    [&in]
+    {
+      for (auto& solver : in.solvers)
+      {
+        solver->assembleElasticPart();
+      }
+    });
+  try
+  {
+    detectContacts();
+  }
+  catch (...)
+  {
+    elastic.wait(); // the task uses the solvers: never left running
+    throw;
+  }
+  elastic.wait();
 }
 
 bool CollisionScene::solveJointly(SolverResult& result)

@@ -167,6 +167,8 @@ public:
   std::size_t obstacleCount() const;
 
 private:
+  /// detectContacts() with the solvers' elastic parts assembled alongside.
+  void assembleWhileDetecting();
   bool solveJointly(SolverResult& result);
 
   struct Implementation;

@@ -613,6 +613,7 @@ void CorotationalHexFem::setPositions(const std::vector<Vector3>& positions)
     throw InvalidInputError("co-rotational FEM: positions must be finite, one per node");
   }
   Positions = positions;
+  ElasticPartAssembled = false;
 }
 
 void CorotationalHexFem::setVelocities(const std::vector<Vector3>& velocities)
@@ -624,6 +625,7 @@ void CorotationalHexFem::setVelocities(const std::vector<Vector3>& velocities)
     throw InvalidInputError("co-rotational FEM: velocities must be finite, one per node");
   }
   Velocities = velocities;
+  ElasticPartAssembled = false;
 }
 
 double CorotationalHexFem::kineticEnergy() const
@@ -681,6 +683,7 @@ void CorotationalHexFem::setSettings(const CorotationalHexFemSettings& settings)
   }
   System->history.setDepth(settings.warmStartSolutions);
   Settings = settings;
+  ElasticPartAssembled = false;
 }
 
 void CorotationalHexFem::setMaterial(std::size_t hexahedron, const LinearMaterial& material)
@@ -693,6 +696,7 @@ void CorotationalHexFem::setMaterial(std::size_t hexahedron, const LinearMateria
   Elements[hexahedron] = makeElement(Elements[hexahedron].nodes, material, hexahedron);
   Elements[hexahedron].active = active;
   updateNodeMasses();
+  ElasticPartAssembled = false;
 }
 
 void CorotationalHexFem::reserve(std::size_t nodes, std::size_t hexahedra)
@@ -2005,23 +2009,44 @@ SolverResult CorotationalHexFem::step()
   return result;
 }
 
+void CorotationalHexFem::assembleElasticPart()
+{
+  prepareSystem();
+  LinearSystem& s = *System;
+  if (!StepOpened)
+  {
+    ++s.stepIndex;
+    landBackgroundRefactorization();
+    StepOpened = true;
+  }
+  if (s.dofCount > 0)
+  {
+    const double h = Settings.timeStep;
+    const double alpha = Settings.rayleighMass;
+    const double beta = Settings.rayleighStiffness;
+    // (M + h D + h^2 K) dv = h (f_ext - f_int - alpha M v - (beta + h) K v)
+    assemble(h * beta + h * h, 1.0 + h * alpha, beta + h, s.forces);
+    updateNodeRotations();
+  }
+  ElasticPartAssembled = true;
+}
+
 SolverResult CorotationalHexFem::beginCoupledStep()
 {
   SolverResult result;
-  prepareSystem();
+  if (!ElasticPartAssembled || TopologyChanged)
+  {
+    assembleElasticPart();
+  }
+  ElasticPartAssembled = false;
+  StepOpened = false;
   LinearSystem& s = *System;
-  ++s.stepIndex;
-  landBackgroundRefactorization();
   if (s.dofCount == 0)
   {
     return result;
   }
   const double h = Settings.timeStep;
   const double alpha = Settings.rayleighMass;
-  const double beta = Settings.rayleighStiffness;
-  // (M + h D + h^2 K) dv = h (f_ext - f_int - alpha M v - (beta + h) K v)
-  assemble(h * beta + h * h, 1.0 + h * alpha, beta + h, s.forces);
-  updateNodeRotations();
   for (std::size_t n = 0; n < Positions.size(); ++n)
   {
     const int dof = s.dofOfNode[n];
@@ -2137,6 +2162,7 @@ void CorotationalHexFem::chargeStaleIterations(int iterations)
 SolverResult CorotationalHexFem::finishCoupledStep(const Eigen::VectorXd& solution)
 {
   SolverResult result;
+  ElasticPartAssembled = false; // it moves the nodes
   LinearSystem& s = *System;
   if (solution.size() != s.dofCount)
   {
@@ -2188,6 +2214,7 @@ SolverResult CorotationalHexFem::finishCoupledStep(const Eigen::VectorXd& soluti
 SolverResult CorotationalHexFem::solveStatic(int maxIterations, double relativeTolerance)
 {
   SolverResult result;
+  ElasticPartAssembled = false; // it moves the nodes
   prepareSystem();
   LinearSystem& s = *System;
   if (s.dofCount == 0)

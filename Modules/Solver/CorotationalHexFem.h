@@ -355,6 +355,14 @@ public:
   // body's system, solves the stacked one with its cross terms by
   // conjugate gradients (A_i symmetric positive definite), and finishes
   // each body with its part of the solution.
+  /// The part of the next step that does not depend on the contacts: the
+  /// system's pattern after topology changes, a background factor due at
+  /// that step, and every element's rotation, stiffness and force. A caller
+  /// may run it on another thread while it finds the contacts
+  /// (CollisionScene does); beginCoupledStep() then only adds them. Any
+  /// change of state in between (positions, velocities, settings, material,
+  /// fixing, topology) makes beginCoupledStep assemble again.
+  void assembleElasticPart();
   /// Assembles this step's system (with the contacts) without solving it.
   SolverResult beginCoupledStep();
   /// Free degrees of freedom (3 per simulated, non-fixed node).
@@ -548,6 +556,10 @@ private:
   CorotationalHexFemSettings Settings;
   std::unique_ptr<LinearSystem> System;
   bool TopologyChanged = true;
+  /// assembleElasticPart() has opened the next step (its index counted, a
+  /// due background factor landed) and assembled it from the current state.
+  bool StepOpened = false;
+  bool ElasticPartAssembled = false;
 };
 
 } // namespace thintissue
