@@ -361,7 +361,9 @@ public:
   /// may run it on another thread while it finds the contacts
   /// (CollisionScene does); beginCoupledStep() then only adds them. Any
   /// change of state in between (positions, velocities, settings, material,
-  /// fixing, topology) makes beginCoupledStep assemble again.
+  /// fixing, topology) makes beginCoupledStep assemble again. While it
+  /// runs, another thread may call setContacts() and read positions() and
+  /// velocities(), nothing else.
   void assembleElasticPart();
   /// Assembles this step's system (with the contacts) without solving it.
   SolverResult beginCoupledStep();
