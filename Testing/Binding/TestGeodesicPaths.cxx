@@ -7,6 +7,7 @@
 #include "ThinTissueError.h"
 
 #include "BindingTestHelpers.h"
+#include "TetrahedronSurfaces.h"
 
 #include <gtest/gtest.h>
 
@@ -711,18 +712,7 @@ TEST(GeodesicPaths, InvalidInputIsRejected)
   const TriangleMeshAdjacency bowTieAdjacency(bowTie);
   EXPECT_THROW(construct(bowTie, bowTieAdjacency), InvalidInputError);
   // Two closed tetrahedra sharing vertex 0: each fan closes on itself.
-  TriangleMesh closedBowTie;
-  closedBowTie.positions = {
-    { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, -1 }
-  };
-  closedBowTie.triangles = { { 0, 2, 1 },
-    { 0, 1, 3 },
-    { 0, 3, 2 },
-    { 1, 2, 3 },
-    { 0, 5, 4 },
-    { 0, 4, 6 },
-    { 0, 6, 5 },
-    { 4, 5, 6 } };
+  const TriangleMesh closedBowTie = thintissue::testing::tetrahedraSharingAVertex();
   const TriangleMeshAdjacency closedBowTieAdjacency(closedBowTie);
   EXPECT_THROW(construct(closedBowTie, closedBowTieAdjacency), InvalidInputError);
   TriangleMesh flat = bowTie;

@@ -1,6 +1,8 @@
 #include "MeshPrimitives.h"
 #include "MeshValidation.h"
 
+#include "TetrahedronSurfaces.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <string>
 
 using namespace thintissue;
+using thintissue::testing::tetrahedronSurface;
 
 namespace
 {
@@ -24,15 +27,6 @@ TriangleMesh smallSlab()
   return slab;
 }
 
-TriangleMesh tetrahedron(const Vector3& offset)
-{
-  TriangleMesh mesh;
-  mesh.positions = {
-    offset, offset + Vector3(1, 0, 0), offset + Vector3(0, 1, 0), offset + Vector3(0, 0, 1)
-  };
-  mesh.triangles = { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } };
-  return mesh;
-}
 } // namespace
 
 TEST(MeshValidation, CleanSlabIsAClosedOutwardSurface)
@@ -105,7 +99,7 @@ TEST(MeshValidation, DuplicatesAndBowTiesMatchBruteForce)
         for (int k = 0; k < 4; ++k)
           mesh.positions.emplace_back(piece + 0.3 * k, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0);
         const int apex = piece > 0 && random() % 2 == 0 ? 0 : base;
-        for (const Triangle& c : tetrahedron(Vector3::Zero()).triangles)
+        for (const Triangle& c : tetrahedronSurface(Vector3::Zero()).triangles)
           mesh.triangles.push_back({ c[0] == 0 ? apex : base + c[0],
             c[1] == 0 ? apex : base + c[1],
             c[2] == 0 ? apex : base + c[2] });
@@ -202,7 +196,7 @@ TEST(MeshValidation, FlippedTriangleIsInconsistentlyOriented)
 
 TEST(MeshValidation, DegenerateTriangles)
 {
-  TriangleMesh mesh = tetrahedron(Vector3::Zero());
+  TriangleMesh mesh = tetrahedronSurface(Vector3::Zero());
   mesh.triangles.push_back({ 0, 0, 1 });            // repeated vertex
   mesh.positions.push_back(Vector3(0.5, 0.0, 0.0)); // collinear
   mesh.triangles.push_back({ 0, 1, 4 });
@@ -213,30 +207,16 @@ TEST(MeshValidation, DegenerateTriangles)
 
 TEST(MeshValidation, PiecesBowTiesAndUnreferencedVertices)
 {
-  TriangleMesh two = tetrahedron(Vector3::Zero());
-  two.append(tetrahedron(Vector3(3, 0, 0)));
+  TriangleMesh two = tetrahedronSurface(Vector3::Zero());
+  two.append(tetrahedronSurface(Vector3(3, 0, 0)));
   MeshValidationReport report = validateTriangleMesh(two);
   EXPECT_EQ(report.connectedComponents, 2u);
   EXPECT_TRUE(report.isClosedManifold());
   EXPECT_FALSE(report.isClosedOutwardSingleSurface());
 
   // Two tetrahedra sharing only a vertex: a bow-tie (non-manifold vertex).
-  TriangleMesh bowTie = tetrahedron(Vector3::Zero());
-  TriangleMesh mirrored = tetrahedron(Vector3::Zero());
-  for (Vector3& p : mirrored.positions)
-  {
-    p = -p;
-  }
-  mirrored.reverseOrientation();
-  bowTie.append(mirrored);
-  for (Triangle& tri : bowTie.triangles)
-  {
-    for (int& v : tri)
-    {
-      v = v == 4 ? 0 : v; // the mirrored apex 4 sits at vertex 0: glue them
-    }
-  }
-  bowTie.positions[4] = Vector3(9, 9, 9); // now unreferenced
+  TriangleMesh bowTie = thintissue::testing::tetrahedraSharingAVertex();
+  bowTie.positions.push_back(Vector3(9, 9, 9)); // unreferenced
   report = validateTriangleMesh(bowTie);
   EXPECT_EQ(report.nonManifoldVertices.count, 1u);
   EXPECT_EQ(report.nonManifoldVertices.firstLocation, "vertex 0");
