@@ -8,6 +8,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -62,6 +66,136 @@ void multiply(const RowMatrix& m, const Eigen::VectorXd& x, Eigen::VectorXd& y)
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, m.rows(), 512),
     [&](const tbb::blocked_range<Eigen::Index>& range) { rows(range.begin(), range.end()); });
 }
+
+/// A symmetric matrix of 3x3 node blocks (the finest level's), each block
+/// column-major in single precision, block rows in order. The V-cycle's
+/// products on the finest level are most of a multigrid step (63 % of the
+/// 10,000-hexahedra block's samples) and they wait on memory: 40 bytes a
+/// block here against 108 in the double CSR rows. A preconditioner needs
+/// no more precision than this (measured: Documentation/Architecture.md).
+struct NodeBlockRows
+{
+  std::vector<int> rowStarts; ///< per block row, its first block (and the end)
+  std::vector<int> columns;   ///< per block, its node column
+  std::vector<float> values;  ///< 9 per block, then one float of padding
+
+  bool empty() const { return rowStarts.empty(); }
+};
+
+/// Whether the rows of `node` in m hold the same whole 3x3 blocks.
+bool holdsNodeBlocks(const RowMatrix& m, Eigen::Index node)
+{
+  const int* starts = m.outerIndexPtr();
+  const int* columns = m.innerIndexPtr();
+  const int first = starts[3 * node];
+  const int width = starts[3 * node + 1] - first;
+  if (width % 3 != 0)
+    return false;
+  for (int i = 0; i < 3; ++i)
+  {
+    const int row = starts[3 * node + i];
+    if (starts[3 * node + i + 1] - row != width)
+      return false;
+    for (int k = 0; k < width; ++k)
+    {
+      const int blockStart = columns[first + 3 * (k / 3)];
+      if (columns[row + k] != blockStart + k % 3 || blockStart % 3 != 0)
+        return false;
+    }
+  }
+  return true;
+}
+
+/// The node blocks of `m` (3 unknowns per node); empty if m is not made of
+/// whole node blocks.
+NodeBlockRows nodeBlockRows(const RowMatrix& m)
+{
+  NodeBlockRows blocks;
+  if (m.rows() % 3 != 0 || m.rows() != m.cols() || !m.isCompressed())
+    return blocks;
+  const int* starts = m.outerIndexPtr();
+  const int* columns = m.innerIndexPtr();
+  const double* values = m.valuePtr();
+  const Eigen::Index nodes = m.rows() / 3;
+  blocks.rowStarts.reserve(static_cast<std::size_t>(nodes) + 1);
+  blocks.rowStarts.push_back(0);
+  for (Eigen::Index node = 0; node < nodes; ++node)
+  {
+    if (!holdsNodeBlocks(m, node))
+      return {};
+    const int first = starts[3 * node];
+    for (int k = 0; k < starts[3 * node + 1] - first; k += 3)
+    {
+      blocks.columns.push_back(columns[first + k] / 3);
+      for (int j = 0; j < 3; ++j) // column j of the block
+        for (int i = 0; i < 3; ++i)
+          blocks.values.push_back(static_cast<float>(values[starts[3 * node + i] + k + j]));
+    }
+    blocks.rowStarts.push_back(static_cast<int>(blocks.columns.size()));
+  }
+  blocks.values.push_back(0.0f); // the last block's third column reads one more
+  return blocks;
+}
+
+/// y[3r .. 3r + 2] = the sum over the blocks of row r of B x[3c .. 3c + 2],
+/// for rows [begin, end).
+void multiplyBlockRows(const NodeBlockRows& m,
+  const double* x,
+  double* y,
+  Eigen::Index begin,
+  Eigen::Index end)
+{
+  for (Eigen::Index r = begin; r < end; ++r)
+  {
+#if defined(__AVX2__) && defined(__FMA__)
+    // Each column read four wide: its fourth lane (the next column's
+    // first entry) is left out of y.
+    __m256d sum = _mm256_setzero_pd();
+    for (int k = m.rowStarts[r]; k < m.rowStarts[r + 1]; ++k)
+    {
+      const float* block = m.values.data() + 9 * static_cast<std::size_t>(k);
+      const double* u = x + 3 * static_cast<std::ptrdiff_t>(m.columns[k]);
+      sum = _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(block)), _mm256_set1_pd(u[0]), sum);
+      sum = _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(block + 3)), _mm256_set1_pd(u[1]), sum);
+      sum = _mm256_fmadd_pd(_mm256_cvtps_pd(_mm_loadu_ps(block + 6)), _mm256_set1_pd(u[2]), sum);
+    }
+    alignas(32) double lanes[4];
+    _mm256_store_pd(lanes, sum);
+    y[3 * r] = lanes[0];
+    y[3 * r + 1] = lanes[1];
+    y[3 * r + 2] = lanes[2];
+#else
+    double sum[3] = { 0.0, 0.0, 0.0 };
+    for (int k = m.rowStarts[r]; k < m.rowStarts[r + 1]; ++k)
+    {
+      const float* block = m.values.data() + 9 * static_cast<std::size_t>(k);
+      const double* u = x + 3 * static_cast<std::ptrdiff_t>(m.columns[k]);
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i)
+          sum[i] += static_cast<double>(block[3 * j + i]) * u[j];
+    }
+    y[3 * r] = sum[0];
+    y[3 * r + 1] = sum[1];
+    y[3 * r + 2] = sum[2];
+#endif
+  }
+}
+
+/// y = m x (y sized here), block rows in parallel on large matrices (each
+/// row by one thread: the same bits for any thread count).
+void multiply(const NodeBlockRows& m, const Eigen::VectorXd& x, Eigen::VectorXd& y)
+{
+  const Eigen::Index rows = static_cast<Eigen::Index>(m.rowStarts.size()) - 1;
+  y.resize(3 * rows);
+  if (9 * m.columns.size() < static_cast<std::size_t>(ParallelProductEntries))
+  {
+    multiplyBlockRows(m, x.data(), y.data(), 0, rows);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, rows, 256),
+    [&](const tbb::blocked_range<Eigen::Index>& range)
+    { multiplyBlockRows(m, x.data(), y.data(), range.begin(), range.end()); });
+}
 } // namespace
 
 void checkSmoothedAggregationSettings(const SmoothedAggregationSettings& s)
@@ -91,6 +225,12 @@ struct SmoothedAggregation::Level
   /// To the next coarser level (empty on the coarsest).
   RowMatrix prolongator, restrictor;
   Eigen::VectorXd x, b, residual, direction, work;
+  /// The finest level's matrix again, as 3x3 node blocks in single
+  /// precision (NodeBlockRows): what its products read.
+  NodeBlockRows nodeBlocks;
+
+  /// y = A x, through the node blocks when the level has them.
+  void product(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
 
   int blockCount() const { return static_cast<int>(blockStarts.size()) - 1; }
   bool invertDiagonalBlocks();
@@ -169,6 +309,14 @@ void SmoothedAggregation::Level::applyBlockInverse(const Eigen::VectorXd& r,
   }
 }
 
+void SmoothedAggregation::Level::product(const Eigen::VectorXd& v, Eigen::VectorXd& y) const
+{
+  if (nodeBlocks.empty())
+    multiply(matrix, v, y);
+  else
+    multiply(nodeBlocks, v, y);
+}
+
 void SmoothedAggregation::Level::estimateSpectrum()
 {
   // Power iterations on D^-1 A from a fixed, rough start (deterministic).
@@ -184,7 +332,7 @@ void SmoothedAggregation::Level::estimateSpectrum()
   for (int iteration = 0; iteration < 20; ++iteration)
   {
     v /= v.norm();
-    multiply(matrix, v, work);
+    product(v, work);
     applyBlockInverse(work, v);
     estimate = v.norm();
   }
@@ -260,7 +408,7 @@ void SmoothedAggregation::Level::smooth(int degree, bool fromZero)
   }
   else
   {
-    multiply(matrix, x, work);
+    product(x, work);
     residual = b - work;
   }
   applyBlockInverse(residual, direction);
@@ -279,7 +427,7 @@ void SmoothedAggregation::Level::smooth(int degree, bool fromZero)
     {
       break;
     }
-    multiply(matrix, direction, work);
+    product(direction, work);
     residual -= work;
     const double next = 1.0 / (2.0 * sigma - rho);
     applyBlockInverse(residual, work);
@@ -478,6 +626,7 @@ bool SmoothedAggregation::build(const SparseMatrix& upper,
   {
     Level& finest = hierarchy->levels.back();
     finest.matrix = upper.selfadjointView<Eigen::Upper>();
+    finest.nodeBlocks = nodeBlockRows(finest.matrix);
     finest.blockStarts.resize(static_cast<std::size_t>(nodes.rows()) + 1);
     for (std::size_t k = 0; k < finest.blockStarts.size(); ++k)
     {
@@ -566,7 +715,7 @@ void SmoothedAggregation::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z)
   {
     Level& level = levels[l];
     level.smooth(Settings.smootherDegree, true);
-    multiply(level.matrix, level.x, level.work);
+    level.product(level.x, level.work);
     level.residual = level.b - level.work;
     multiply(level.restrictor, level.residual, levels[l + 1].b);
   }
@@ -594,6 +743,11 @@ int SmoothedAggregation::levelCount() const
 Eigen::Index SmoothedAggregation::levelUnknowns(int level) const
 {
   return Levels->levels[static_cast<std::size_t>(level)].matrix.rows();
+}
+
+bool SmoothedAggregation::finestLevelInNodeBlocks() const
+{
+  return Levels && !Levels->levels.front().nodeBlocks.empty();
 }
 
 double SmoothedAggregation::operatorComplexity() const

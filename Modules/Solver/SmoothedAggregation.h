@@ -85,6 +85,10 @@ public:
   Eigen::Index levelUnknowns(int level) const;
   /// Stored entries of all level matrices over those of the finest.
   double operatorComplexity() const;
+  /// Whether the finest level's products read its 3x3 node blocks in
+  /// single precision (a matrix of whole node blocks, as the FEM's is);
+  /// else its double rows.
+  bool finestLevelInNodeBlocks() const;
 
 private:
   struct Level;

@@ -117,6 +117,7 @@ TEST(SmoothedAggregation, TheVCycleIsSymmetricPositiveDefinite)
   std::string message;
   ASSERT_TRUE(multigrid.build(upper, nodes, message)) << message;
   ASSERT_GE(multigrid.levelCount(), 3);
+  EXPECT_TRUE(multigrid.finestLevelInNodeBlocks()); // the path these checks are about
   EXPECT_LT(multigrid.levelUnknowns(1), multigrid.levelUnknowns(0) / 4);
   EXPECT_GT(multigrid.operatorComplexity(), 1.0);
   std::mt19937 random(7);
@@ -155,6 +156,7 @@ TEST(SmoothedAggregation, TheVCycleGivesTheSameBitsOnOneOrTwoThreads)
   SmoothedAggregation multigrid;
   std::string message;
   ASSERT_TRUE(multigrid.build(upper, nodes, message)) << message;
+  EXPECT_TRUE(multigrid.finestLevelInNodeBlocks());
   Eigen::VectorXd r(upper.rows());
   for (Eigen::Index i = 0; i < r.size(); ++i)
   {
@@ -219,4 +221,29 @@ TEST(SmoothedAggregation, AMatrixWhoseBlocksAreNotPositiveDefiniteIsRefused)
   EXPECT_FALSE(multigrid.build(upper, nodes, message));
   EXPECT_NE(message.find("not positive definite"), std::string::npos) << message;
   EXPECT_FALSE(multigrid.ready());
+}
+
+TEST(SmoothedAggregation, AMatrixNotMadeOfWholeNodeBlocksKeepsItsDoubleRows)
+{
+  // A weak coupling of one unknown of the first node with one of the last
+  // (nodes no hexahedron joins): a partial 3x3 block, so the finest level
+  // keeps its double rows, and the V-cycle is still symmetric positive
+  // definite.
+  SmoothedAggregation::Coordinates nodes;
+  SparseMatrix upper = restSystem(fixedBlock(6, 3, 2), nodes);
+  const Eigen::Index last = upper.rows() - 1;
+  ASSERT_EQ(upper.coeff(0, last), 0.0);
+  upper.coeffRef(0, last) = 1e-6 * upper.coeff(0, 0);
+  upper.makeCompressed();
+  SmoothedAggregation multigrid;
+  std::string message;
+  ASSERT_TRUE(multigrid.build(upper, nodes, message)) << message;
+  EXPECT_FALSE(multigrid.finestLevelInNodeBlocks());
+  Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(upper.rows(), -1.0, 1.0);
+  Eigen::VectorXd y = Eigen::VectorXd::Ones(upper.rows());
+  Eigen::VectorXd mx, my;
+  multigrid.apply(x, mx);
+  multigrid.apply(y, my);
+  EXPECT_NEAR(x.dot(my), y.dot(mx), 1e-12 * (x.norm() * my.norm() + y.norm() * mx.norm()));
+  EXPECT_GT(x.dot(mx), 0.0);
 }
