@@ -557,7 +557,8 @@ struct MeniscusOnTheKnee
   CollisionScene scene;
   RigidPose pose;
 
-  explicit MeniscusOnTheKnee(double candidateMarginPerRadius = 0.25)
+  explicit MeniscusOnTheKnee(
+    double candidateMarginPerRadius = CollisionSceneParameters{}.candidateMarginPerRadius)
     : fem(meniscus.simulation, material(), stepOf(0.001))
     , collision(meniscus.collision, meniscus.simulation)
     , tibia(knee.tibia.collision)
