@@ -40,13 +40,13 @@ bool isBlockColumn(const Eigen::SparseMatrix<double>& upper, Eigen::Index node)
   return true;
 }
 
-#if defined(__AVX2__) && defined(__FMA__)
 /// The off-diagonal blocks of node column `first` (their block rows
-/// `blockRows[3k]`, columns c0, c1, c2 from entry 3k), four lanes wide:
-/// y[row..row+2] += B (x0, x1, x2) and (y0, y1, y2) += B^T x[row..row+2].
-/// Each 4-wide read stays in the column (its diagonal entries follow the
-/// last block) and in x and y (row + 3 <= first); the fourth lane is
-/// masked out of every sum, so whatever it reads never counts.
+/// `blockRows[3k]`, columns c0, c1, c2 from entry 3k):
+/// y[row..row+2] += B (x0, x1, x2) and (y0, y1, y2) = the sum of
+/// B^T x[row..row+2]. With AVX2 and FMA four lanes wide: each 4-wide read
+/// stays in the column (its diagonal entries follow the last block) and in
+/// x and y (row + 3 <= first), and the fourth lane is masked out of every
+/// sum, so whatever it reads never counts.
 void offDiagonalBlocks(int blocks,
   const int* blockRows,
   const double* c0,
@@ -59,6 +59,7 @@ void offDiagonalBlocks(int blocks,
   double& y1,
   double& y2)
 {
+#if defined(__AVX2__) && defined(__FMA__)
   const __m256d threeLanes = _mm256_castsi256_pd(_mm256_set_epi64x(0, -1, -1, -1));
   const __m256d x0 = _mm256_set1_pd(x[first]);
   const __m256d x1 = _mm256_set1_pd(x[first + 1]);
@@ -87,22 +88,9 @@ void offDiagonalBlocks(int blocks,
   y0 = lanes[0][0] + lanes[0][1] + lanes[0][2];
   y1 = lanes[1][0] + lanes[1][1] + lanes[1][2];
   y2 = lanes[2][0] + lanes[2][1] + lanes[2][2];
-}
 #else
-/// The same, one entry at a time (a build without AVX2 and FMA).
-void offDiagonalBlocks(int blocks,
-  const int* blockRows,
-  const double* c0,
-  const double* c1,
-  const double* c2,
-  const double* x,
-  double* y,
-  Eigen::Index first,
-  double& y0,
-  double& y1,
-  double& y2)
-{
   const double x0 = x[first], x1 = x[first + 1], x2 = x[first + 2];
+  y0 = y1 = y2 = 0.0;
   for (int k = 0; k < blocks; ++k)
   {
     const int row = blockRows[3 * k];
@@ -116,8 +104,8 @@ void offDiagonalBlocks(int blocks,
     y1 += b[0] * u0 + b[1] * u1 + b[2] * u2;
     y2 += c[0] * u0 + c[1] * u1 + c[2] * u2;
   }
-}
 #endif
+}
 
 } // namespace
 
@@ -150,7 +138,7 @@ void BlockSymmetricProduct::multiply(const Eigen::SparseMatrix<double>& upper,
     const double* c1 = values + start[first + 1];
     const double* c2 = values + start[first + 2];
     const double x0 = x[first], x1 = x[first + 1], x2 = x[first + 2];
-    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    double y0, y1, y2;
     const int blocks = (start[first + 1] - start[first] - 1) / 3;
     const int* blockRows = rows + start[first];
     offDiagonalBlocks(blocks, blockRows, c0, c1, c2, x.data(), y.data(), first, y0, y1, y2);

@@ -39,45 +39,11 @@ Eigen::Map<const ColumnMatrix> symmetricColumnView(const RowMatrix& a)
 /// Eigen's serial product: the same bits for any thread count.
 constexpr Eigen::Index ParallelProductEntries = 200000;
 
-/// y = m x (y sized here), rows in parallel on large levels.
-void multiply(const RowMatrix& m, const Eigen::VectorXd& x, Eigen::VectorXd& y)
-{
-  y.resize(m.rows());
-  const auto rows = [&](Eigen::Index begin, Eigen::Index end)
-  {
-    const int* starts = m.outerIndexPtr();
-    const int* columns = m.innerIndexPtr();
-    const double* values = m.valuePtr();
-    for (Eigen::Index i = begin; i < end; ++i)
-    {
-      double sum = 0.0;
-      for (int k = starts[i]; k < starts[i + 1]; ++k)
-      {
-        sum += values[k] * x[columns[k]];
-      }
-      y[i] = sum;
-    }
-  };
-  if (m.nonZeros() < ParallelProductEntries)
-  {
-    rows(0, m.rows());
-    return;
-  }
-  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, m.rows(), 512),
-    [&](const tbb::blocked_range<Eigen::Index>& range) { rows(range.begin(), range.end()); });
-}
-
-/// A row matrix's values in single precision, beside its (double) pattern:
-/// what the V-cycle's other products read (8 bytes an entry against 12).
-std::vector<float> singlePrecision(const RowMatrix& m)
-{
-  return std::vector<float>(m.valuePtr(), m.valuePtr() + m.nonZeros());
-}
-
-/// y = m x with m's values taken from `values` (singlePrecision of m),
-/// rows in parallel on large matrices as multiply's.
-void multiply(const RowMatrix& m,
-  const std::vector<float>& values,
+/// y = m x with m's values taken from `values` (its own, or singlePrecision
+/// of it), y sized here, rows in parallel on large levels.
+template <typename Value>
+void multiplyRows(const RowMatrix& m,
+  const Value* values,
   const Eigen::VectorXd& x,
   Eigen::VectorXd& y)
 {
@@ -103,6 +69,28 @@ void multiply(const RowMatrix& m,
   }
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, m.rows(), 512),
     [&](const tbb::blocked_range<Eigen::Index>& range) { rows(range.begin(), range.end()); });
+}
+
+/// y = m x in m's own (double) values.
+void multiply(const RowMatrix& m, const Eigen::VectorXd& x, Eigen::VectorXd& y)
+{
+  multiplyRows(m, m.valuePtr(), x, y);
+}
+
+/// A row matrix's values in single precision, beside its (double) pattern:
+/// what the V-cycle's other products read (8 bytes an entry against 12).
+std::vector<float> singlePrecision(const RowMatrix& m)
+{
+  return std::vector<float>(m.valuePtr(), m.valuePtr() + m.nonZeros());
+}
+
+/// y = m x in m's single-precision values (singlePrecision of m).
+void multiply(const RowMatrix& m,
+  const std::vector<float>& values,
+  const Eigen::VectorXd& x,
+  Eigen::VectorXd& y)
+{
+  multiplyRows(m, values.data(), x, y);
 }
 
 /// A symmetric matrix of 3x3 node blocks (the finest level's), each block
@@ -697,6 +685,9 @@ bool SmoothedAggregation::build(const SparseMatrix& upper,
     {
       break;
     }
+    // The smoother's spectrum from the operator it will apply.
+    if (level.nodeBlocks.empty())
+      level.matrixValues = singlePrecision(level.matrix);
     level.estimateSpectrum();
     std::vector<int> aggregateOf;
     const int aggregates =
@@ -720,6 +711,8 @@ bool SmoothedAggregation::build(const SparseMatrix& upper,
     const ColumnMatrix coarseTransposed = coarse.transpose();
     level.prolongator = prolongator;
     level.restrictor = restrictor;
+    level.prolongatorValues = singlePrecision(level.prolongator);
+    level.restrictorValues = singlePrecision(level.restrictor);
     Level next;
     next.matrix = 0.5 * (coarse + coarseTransposed); // symmetric to the last bit
     next.blockStarts = std::move(coarseBlockStarts);
@@ -740,13 +733,6 @@ bool SmoothedAggregation::build(const SparseMatrix& upper,
     entries += static_cast<double>(level.matrix.nonZeros());
   }
   hierarchy->complexity = entries / static_cast<double>(hierarchy->levels[0].matrix.nonZeros());
-  for (Level& level : hierarchy->levels)
-  {
-    if (level.nodeBlocks.empty())
-      level.matrixValues = singlePrecision(level.matrix);
-    level.prolongatorValues = singlePrecision(level.prolongator);
-    level.restrictorValues = singlePrecision(level.restrictor);
-  }
   Levels = std::move(hierarchy);
   return true;
 }
