@@ -317,6 +317,9 @@ public:
       common.postorder = 1;
       Decomposition.analyzePattern(matrix);
       Decomposition.chooseSolve();
+      // CHOLMOD's analysis counts the factorization's flops and the
+      // factor's entries; a solve pair takes about 4 flops an entry.
+      SolvesPerFactorization = common.lnz > 0.0 ? common.fl / (4.0 * common.lnz) : 0.0;
       AnalysedPattern = pattern;
     }
     Decomposition.factorize(matrix);
@@ -331,6 +334,11 @@ public:
       solution.setConstant(right.size(), std::numeric_limits<double>::quiet_NaN());
     }
   }
+
+  /// The factorization's flops over a solve's, from the last analysis (0
+  /// before one): 18 at thesis sizes, 63 for the 1,000-hexahedra block,
+  /// 120 for 4,500 hexahedra (they grow faster than the factor).
+  double solvesPerFactorization() const { return SolvesPerFactorization; }
 
 private:
   static int orderingCode(FactorOrdering ordering)
@@ -347,6 +355,7 @@ private:
   }
   ReusableCholmodDecomposition Decomposition;
   long long AnalysedPattern = -1;
+  double SolvesPerFactorization = 0.0;
 };
 
 /// A refactorization running on a worker thread (the stale factor refreshed
@@ -459,6 +468,8 @@ struct CorotationalHexFem::LinearSystem
   int factorizations = 0;
   int synchronousFactorizations = 0;
   BackgroundRefactorization refresh;
+  /// The lag the last background refactorization was given (0: none yet).
+  int refreshLag = 0;
   std::function<void()> backgroundHook;
   /// Steps begun so far: the clock of the deterministic background refresh.
   long long stepIndex = 0;
@@ -1628,7 +1639,8 @@ void CorotationalHexFem::startBackgroundRefactorization()
   refresh.pattern = s.pattern;
   refresh.startStep = s.stepIndex;
   refresh.rotations = s.nodeRotations;
-  refresh.dueStep = s.stepIndex + Settings.backgroundRefactorizationLag;
+  s.refreshLag = backgroundRefactorizationLag(s.lastSolveIterations);
+  refresh.dueStep = s.stepIndex + s.refreshLag;
   refresh.worker = std::thread(
     [&refresh, pattern = s.pattern, settings = Settings, hook = s.backgroundHook]
     {
@@ -1638,6 +1650,32 @@ void CorotationalHexFem::startBackgroundRefactorization()
       }
       refresh.ok = refresh.factor->factorize(refresh.matrix, pattern, settings);
     });
+}
+
+int CorotationalHexFem::backgroundRefactorizationLag(int iterations) const
+{
+  // Due at least Settings.backgroundRefactorizationLag steps after it
+  // starts, and late enough that it is done by then, or that step waits
+  // for it. A factorization costs r solves in flops (CHOLMOD's count), but
+  // its dense supernodal kernels run about 3.5 times as many flops a second
+  // as a solve's, and a step costs about (iterations + 3) solves (the
+  // assembly and products about 3); with margin for the cores the worker
+  // shares with the step's parallel assembly, r / 2 / (iterations + 3)
+  // steps. From the factor's pattern and this step's iterations only: the
+  // same on every replay. The 1,000-hexahedra block (r = 63) in steady
+  // state (1-3 iterations) gets 7-8 steps, where 4 made every refresh's
+  // due step wait about 10 ms for it (`ThinTissueBench --suite fem`,
+  // Documentation/Architecture.md); thesis sizes (r = 18) keep the setting;
+  // a transient's many iterations keep the refresh near.
+  const double solves = System->factor->solvesPerFactorization();
+  const double steps = std::ceil(0.5 * solves / (std::max(iterations, 0) + 3));
+  return std::max(Settings.backgroundRefactorizationLag,
+    static_cast<int>(std::min(steps, static_cast<double>(MaximumRefactorizationLag))));
+}
+
+int CorotationalHexFem::lastBackgroundRefactorizationLag() const
+{
+  return System->refreshLag;
 }
 
 void CorotationalHexFem::landBackgroundRefactorization()

@@ -98,6 +98,11 @@ constexpr int AutomaticDirectLimit = 28000;
 /// higher price per step.
 constexpr int BridgeUnknownLimit = 2000;
 
+/// The most steps a background refactorization is given before it is
+/// swapped in (CorotationalHexFem::backgroundRefactorizationLag): a factor
+/// that takes longer waits at its due step rather than go on staler.
+constexpr int MaximumRefactorizationLag = 16;
+
 /// Fraction of the unknowns above which a topology change is not bridged:
 /// the touched block's exact solve then costs about what the whole
 /// factorization does, at every iteration of every bridged step. Measured
@@ -191,7 +196,9 @@ struct CorotationalHexFemSettings
   /// Deterministic background refresh: a refactorization started at step k
   /// (of step k's matrix) is swapped in at step k + lag, waiting for it if
   /// it has not finished -- never "whenever it is ready", so that replays
-  /// are exact. At least 1.
+  /// are exact. The lag is fixed when the refactorization starts, from the
+  /// factor's size and step k's iterations (a bigger factor takes more
+  /// steps to make), and is at least this. At least 1.
   int backgroundRefactorizationLag = 4;
   /// With a background refresh, the iterations a stale factor may take
   /// before the step gives it up and refactorizes synchronously. At least 1.
@@ -399,6 +406,10 @@ public:
   /// Sparse factorizations done so far (the stale-factor solver reuses one
   /// across many steps), in the step and in the background.
   int factorizationCount() const;
+  /// The steps the last background refactorization was given before it is
+  /// swapped in (0 if none started): CorotationalHexFemSettings::
+  /// backgroundRefactorizationLag or more, for big factors.
+  int lastBackgroundRefactorizationLag() const;
   /// Of those, the ones done inside a step (the first, after a topology
   /// change, and when a stale factor no longer converged).
   int synchronousFactorizationCount() const;
@@ -526,8 +537,12 @@ private:
   /// Whether this step's stale factor is refreshed on a worker thread.
   bool refreshesInBackground() const;
   /// Starts refactorizing the current matrix on a worker thread, to be
-  /// swapped in `backgroundRefactorizationLag` steps later (no-op if one runs).
+  /// swapped in backgroundRefactorizationLag(...) steps later (no-op if one
+  /// runs).
   void startBackgroundRefactorization();
+  /// The steps until a refactorization started now is swapped in, for a
+  /// step that took `iterations`.
+  int backgroundRefactorizationLag(int iterations) const;
   /// At the step a background refactorization is due: waits for it and
   /// swaps it in.
   void landBackgroundRefactorization();

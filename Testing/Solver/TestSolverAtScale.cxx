@@ -197,6 +197,35 @@ TEST(SolverAtScale, BackgroundRefreshReplaysBitForBitWhateverTheThreadTiming)
   EXPECT_LT(largestDifference(prompt, synchronous), 1e-6 * largestDisplacement(mesh, prompt));
 }
 
+TEST(SolverAtScale, BigFactorsAreGivenMoreStepsToBeMadeInTheBackground)
+{
+  // A refresh is due no sooner than the settings' lag, and later where the
+  // factor costs many solves: the 1,000-hexahedra block's (about 63) in a
+  // calm step, so that the step it is due at need not wait for it.
+  const auto largestLag = [](const HexahedralMesh& mesh, int steps)
+  {
+    CorotationalHexFemSettings settings =
+      withSolver(LinearSolverKind::StaleFactorConjugateGradient);
+    settings.backgroundRefactorizationThreshold = 0;
+    CorotationalHexFem fem(mesh, tissue(10.0), settings);
+    fem.setExternalForce(mesh.nodeCount() - 1, Vector3(0.0, 0.2, -0.5));
+    EXPECT_EQ(fem.lastBackgroundRefactorizationLag(), 0);
+    int largest = 0;
+    for (int k = 0; k < steps; ++k)
+    {
+      EXPECT_TRUE(fem.step().ok);
+      largest = std::max(largest, fem.lastBackgroundRefactorizationLag());
+    }
+    EXPECT_GT(fem.factorizationCount(), 1) << "no refresh started";
+    return largest;
+  };
+  const int settingsLag = CorotationalHexFemSettings().backgroundRefactorizationLag;
+  EXPECT_EQ(largestLag(fixedBlock(8, 2, 2), 200), settingsLag);
+  const int bigLag = largestLag(fixedBlock(20, 10, 5), 60);
+  EXPECT_GT(bigLag, settingsLag);
+  EXPECT_LE(bigLag, MaximumRefactorizationLag);
+}
+
 TEST(SolverAtScale, BackgroundRefreshLeavesTheStepsToTheStaleFactor)
 {
   // Refactorizations land off the step: after the first, none is done
