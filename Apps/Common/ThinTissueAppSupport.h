@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace thintissue::apps
 {
 
@@ -45,10 +47,17 @@ inline void collectMessages(vtkObject* object, MessageCollector* collector)
   object->AddObserver(vtkCommand::WarningEvent, collector);
 }
 
-/// "[#####     ]  52% computing geodesic paths" on stderr, redrawn in place.
+/// "[#####     ]  52% computing geodesic paths" on stderr, redrawn in place
+/// on a terminal. Where stderr is not one (a log file, a pipe, a CI job),
+/// one plain line per stage instead ("[ 52%] computing geodesic paths"):
+/// a redrawn bar there is one endless line of carriage returns.
 class TextProgressBar
 {
 public:
+  TextProgressBar()
+    : Interactive(isatty(fileno(stderr)) != 0)
+  {
+  }
   void draw(double fraction, const std::string& stage)
   {
     fraction = std::clamp(fraction, 0.0, 1.0);
@@ -59,6 +68,18 @@ public:
     const int percent = static_cast<int>(fraction * 100.0 + 0.5);
     if (percent == LastPercent && stage == LastStage)
     {
+      return;
+    }
+    if (!Interactive)
+    {
+      if (stage != LastStage)
+      {
+        char number[8];
+        std::snprintf(number, sizeof(number), "[%3d%%]", percent);
+        std::cerr << number << ' ' << stage << '\n' << std::flush;
+      }
+      LastPercent = percent;
+      LastStage = stage;
       return;
     }
     LastPercent = percent;
@@ -88,6 +109,7 @@ public:
   }
 
 private:
+  bool Interactive;
   int LastPercent = -1;
   std::string LastStage;
   std::size_t LastLength = 0;

@@ -1,7 +1,8 @@
 # cmake -DCOMMAND="exe;args" -DEXPECT_EXIT=N [-DEXPECT_OUTPUT=regex]
-#       [-DEXPECT_FILES="f1;f2"] -P RunAndCheck.cmake
+#       [-DEXPECT_FILES="f1;f2"] [-DEXPECT_PLAIN_LINES=ON] -P RunAndCheck.cmake
 # Runs COMMAND; fails unless the exit code, the combined output and the
-# produced files are as expected.
+# produced files are as expected. EXPECT_PLAIN_LINES: the output (to a
+# pipe, not a terminal) holds no carriage return, as a log file needs.
 foreach(file IN LISTS EXPECT_FILES)
   file(REMOVE "${file}")
 endforeach()
@@ -13,6 +14,13 @@ if(NOT "${exit_code}" STREQUAL "${EXPECT_EXIT}")
 endif()
 if(DEFINED EXPECT_OUTPUT AND NOT output MATCHES "${EXPECT_OUTPUT}")
   message(FATAL_ERROR "output does not match '${EXPECT_OUTPUT}'")
+endif()
+if(EXPECT_PLAIN_LINES)
+  string(ASCII 13 carriage_return)
+  string(FIND "${output}" "${carriage_return}" position)
+  if(NOT position EQUAL -1)
+    message(FATAL_ERROR "output holds a carriage return (at ${position}): not plain lines")
+  endif()
 endif()
 foreach(file IN LISTS EXPECT_FILES)
   if(NOT EXISTS "${file}")
