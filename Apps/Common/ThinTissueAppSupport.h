@@ -70,20 +70,19 @@ public:
     {
       return;
     }
+    const bool newStage = stage != LastStage;
+    LastPercent = percent;
+    LastStage = stage;
     if (!Interactive)
     {
-      if (stage != LastStage)
+      if (newStage)
       {
         char number[8];
         std::snprintf(number, sizeof(number), "[%3d%%]", percent);
         std::cerr << number << ' ' << stage << '\n' << std::flush;
       }
-      LastPercent = percent;
-      LastStage = stage;
       return;
     }
-    LastPercent = percent;
-    LastStage = stage;
     constexpr int Width = 30;
     const int filled = static_cast<int>(fraction * Width + 0.5);
     std::string line = "[" + std::string(filled, '#') + std::string(Width - filled, ' ') + "] ";

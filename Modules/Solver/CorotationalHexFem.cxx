@@ -1699,7 +1699,7 @@ void CorotationalHexFem::startBackgroundRefactorization()
   refresh.pattern = s.pattern;
   refresh.startStep = s.stepIndex;
   refresh.rotations = s.nodeRotations;
-  s.refreshLag = backgroundRefactorizationLag(s.lastSolveIterations);
+  s.refreshLag = refreshLagAfter(s.lastSolveIterations);
   refresh.dueStep = s.stepIndex + s.refreshLag;
   refresh.worker = std::thread(
     [&refresh, pattern = s.pattern, settings = Settings, hook = s.backgroundHook]
@@ -1712,7 +1712,7 @@ void CorotationalHexFem::startBackgroundRefactorization()
     });
 }
 
-int CorotationalHexFem::backgroundRefactorizationLag(int iterations) const
+int CorotationalHexFem::refreshLagAfter(int iterations) const
 {
   // Due at least Settings.backgroundRefactorizationLag steps after it
   // starts, and late enough that it is done by then, or that step waits

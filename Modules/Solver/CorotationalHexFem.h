@@ -99,7 +99,7 @@ constexpr int AutomaticDirectLimit = 28000;
 constexpr int BridgeUnknownLimit = 2000;
 
 /// The most steps a background refactorization is given before it is
-/// swapped in (CorotationalHexFem::backgroundRefactorizationLag): a factor
+/// swapped in (CorotationalHexFem::refreshLagAfter): a factor
 /// that takes longer waits at its due step rather than go on staler.
 constexpr int MaximumRefactorizationLag = 16;
 
@@ -537,12 +537,12 @@ private:
   /// Whether this step's stale factor is refreshed on a worker thread.
   bool refreshesInBackground() const;
   /// Starts refactorizing the current matrix on a worker thread, to be
-  /// swapped in backgroundRefactorizationLag(...) steps later (no-op if one
+  /// swapped in refreshLagAfter(...) steps later (no-op if one
   /// runs).
   void startBackgroundRefactorization();
   /// The steps until a refactorization started now is swapped in, for a
   /// step that took `iterations`.
-  int backgroundRefactorizationLag(int iterations) const;
+  int refreshLagAfter(int iterations) const;
   /// At the step a background refactorization is due: waits for it and
   /// swaps it in.
   void landBackgroundRefactorization();
