@@ -28,14 +28,15 @@ public:
     }
     return i;
   }
-  void unite(int a, int b)
+  /// Joins the sets of a and b; whether they were apart.
+  bool unite(int a, int b)
   {
     a = find(a);
     b = find(b);
-    if (a != b)
-    {
-      Parent[std::max(a, b)] = std::min(a, b);
-    }
+    if (a == b)
+      return false;
+    Parent[std::max(a, b)] = std::min(a, b);
+    return true;
   }
 
 private:

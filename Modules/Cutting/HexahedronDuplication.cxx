@@ -184,9 +184,10 @@ void HexahedralBranches::splitBranches(const CuttableCollisionMesh& collision,
   HexahedralMesh& mesh,
   HexahedronDuplicationResult& result)
 {
-  const std::vector<int> triangles = HexTriangles[h];
+  const std::vector<int>& triangles = HexTriangles[h];
   const int n = static_cast<int>(triangles.size());
   UnionFind groups(n);
+  int roots = n;
   for (int i = 0; i < n; ++i)
   {
     const Triangle& tri = collision.triangles()[triangles[i]];
@@ -196,12 +197,13 @@ void HexahedralBranches::splitBranches(const CuttableCollisionMesh& collision,
       {
         const auto at = std::lower_bound(triangles.begin(), triangles.end(), other);
         if (other >= 0 && at != triangles.end() && *at == other)
-        {
-          groups.unite(i, static_cast<int>(at - triangles.begin()));
-        }
+          roots -= groups.unite(i, static_cast<int>(at - triangles.begin())) ? 1 : 0;
       }
     }
   }
+  // Most touched hexahedra keep one branch: nothing to copy, nothing made.
+  if (roots < 2)
+    return;
   std::vector<std::vector<int>> branches(n);
   for (int i = 0; i < n; ++i)
   {
@@ -211,10 +213,6 @@ void HexahedralBranches::splitBranches(const CuttableCollisionMesh& collision,
     std::remove_if(
       branches.begin(), branches.end(), [](const std::vector<int>& b) { return b.empty(); }),
     branches.end());
-  if (branches.size() < 2)
-  {
-    return;
-  }
   // The largest branch stays (ties: the one with the lowest triangle).
   std::stable_sort(branches.begin(),
     branches.end(),
