@@ -1,5 +1,6 @@
 // 5.3.3: the visual-collision binding after a cut, and the visual mesh
 // opened where the collision mesh opened.
+#include "SplitFormula.h"
 #include "VisualMeshCut.h"
 #include "VisualMeshCutPrivate.h"
 
@@ -18,72 +19,6 @@ namespace thintissue
 
 namespace
 {
-
-/// The piece (a triangle in the plane) a point lies in, or is nearest to:
-/// the one where its smallest barycentric coordinate is largest.
-int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vector2& x)
-{
-  int best = 0;
-  double bestMinimum = -std::numeric_limits<double>::infinity();
-  for (std::size_t c = 0; c < pieces.size(); ++c)
-  {
-    const auto& p = pieces[c];
-    Eigen::Matrix2d m;
-    m.col(0) = p[1] - p[0];
-    m.col(1) = p[2] - p[0];
-    const Vector2 bc = m.inverse() * (x - p[0]);
-    const double minimum = std::min({ 1.0 - bc.x() - bc.y(), bc.x(), bc.y() });
-    if (minimum > bestMinimum)
-    {
-      bestMinimum = minimum;
-      best = static_cast<int>(c);
-    }
-  }
-  return best;
-}
-
-/// Formula 5-2's M^-1 per piece of the split.
-std::vector<Eigen::Matrix3d> childInverses(const CollisionTriangleSplit& split)
-{
-  std::vector<Eigen::Matrix3d> inverses;
-  inverses.reserve(split.childCorners.size());
-  for (const auto& childCorners : split.childCorners)
-  {
-    Eigen::Matrix3d m;
-    for (int k = 0; k < 3; ++k)
-      m.row(k) = childCorners[k].transpose();
-    inverses.push_back(m.inverse());
-  }
-  return inverses;
-}
-
-/// Formula 5-2 as one affine map of a region's plane: the parent parameters
-/// of a point p of the plane are x = e0 + E F^-1 (p - frame[0]) (F the
-/// frame's sides, E = [-1 -1; 1 0; 0 1]), and the child's are y = M^-T x.
-class PlaneToChild
-{
-public:
-  PlaneToChild(const std::array<Vector2, 3>& frame, const Eigen::Matrix3d& inverse)
-  {
-    Eigen::Matrix2d frameMatrix;
-    frameMatrix.col(0) = frame[1] - frame[0];
-    frameMatrix.col(1) = frame[2] - frame[0];
-    Eigen::Matrix<double, 3, 2> sides;
-    sides << -1.0, -1.0, 1.0, 0.0, 0.0, 1.0;
-    Map = inverse.transpose() * sides * frameMatrix.inverse();
-    Offset = inverse.transpose().col(0) - Map * frame[0];
-  }
-  /// The child parameters of plane point p (clamped into the child).
-  Vector3 parameters(const Vector2& p) const
-  {
-    const Vector3 y = (Map * p + Offset).cwiseMax(0.0);
-    return y / y.sum();
-  }
-
-private:
-  Eigen::Matrix<double, 3, 2> Map;
-  Vector3 Offset;
-};
 
 /// The region's triangles grouped by piece: `members` lists them piece by
 /// piece, piece p from pieceStart[p] (given each piece's count in
@@ -1056,6 +991,7 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
       std::fill(worker.localIndex.begin(), worker.localIndex.end(), -1);
     throw;
   }
+  SplitHistory.recordCut(cut, collision.restPositions());
   result.splitRegions = context.regions.size();
   result.regionsLocated = static_cast<std::size_t>(std::count_if(context.regions.begin(),
     context.regions.end(),

@@ -1,6 +1,7 @@
 #include "VisualMeshCut.h"
 
 #include "PathRemeshing.h"
+#include "SplitFormula.h"
 #include "VisualMeshCutPrivate.h"
 
 #include "ReservedVector.h"
@@ -112,17 +113,6 @@ void extractTriangles(const TriangleMesh& mesh,
     local.mesh.pointAttributes.set(
       names[a], mesh.pointAttributes.get(names[a]).components, std::move(attributes[a]));
   }
-}
-
-/// Formula 5-1's plane: the triangle's rest corners in 2D, lengths and
-/// angles kept.
-std::array<Vector2, 3> planarFrame(const std::vector<Vector3>& rest, const Triangle& corners)
-{
-  const Vector3 e1 = rest[corners[1]] - rest[corners[0]];
-  const Vector3 e2 = rest[corners[2]] - rest[corners[0]];
-  const Vector3 xAxis = e1.normalized();
-  const Vector3 yAxis = e1.cross(e2).cross(e1).normalized();
-  return { Vector2::Zero(), Vector2(e1.norm(), 0.0), Vector2(e2.dot(xAxis), e2.dot(yAxis)) };
 }
 
 /// Tutte's embedding of a region: border vertices at their (bulged)
@@ -401,6 +391,7 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
     EdgeIndex.emplace(edgeKey(Edges[e][0], Edges[e][1]), static_cast<int>(e));
   }
   Regions.resize(binding.collisionTriangles.size());
+  SplitHistory = CollisionSplitHistory(binding.collisionTriangles.size());
   for (std::size_t t = 0; t < TriangleRegion.size(); ++t)
   {
     const int region = TriangleRegion[t];

@@ -41,6 +41,7 @@
 #define VisualMeshCut_h
 
 #include "CollisionMeshCut.h"
+#include "CollisionSplitHistory.h"
 #include "SurfacePath.h"
 #include "ThinTissueCuttingModule.h"
 #include "VisualCollisionBinding.h"
@@ -187,6 +188,10 @@ public:
   /// Whether the edge's two sides meet on the rim (one path for both).
   bool isRimEdge(int a, int b) const;
   std::size_t cutSurfaceTriangleCount() const;
+  /// The splits of the collision triangles so far, in the order cut: a
+  /// binding taken before a cut (node = its triangle then) resolves through
+  /// it to the eager binding of today (CollisionSplitHistory.h).
+  const CollisionSplitHistory& splitHistory() const { return SplitHistory; }
   /// A collision triangle holding visual vertex v's bound element.
   int collisionTriangleOf(int v, const CuttableCollisionMesh& collision) const;
   /// Barycentric parameters of visual vertex v in a collision triangle with
@@ -583,6 +588,7 @@ private:
   bool HasJunctions = false;
   /// Per collision triangle: its region's visual triangles on side -1, +1.
   std::vector<std::array<std::vector<int>, 2>> Regions;
+  CollisionSplitHistory SplitHistory;
   std::unordered_map<std::uint64_t, EdgePaths> Paths;
   std::unordered_map<std::uint64_t, CutStrip> Strips;
   /// Per collision vertex on a cut: the cut-surface vertices of its column

@@ -3,6 +3,7 @@
 #ifndef VisualMeshCutPrivate_h
 #define VisualMeshCutPrivate_h
 
+#include "SplitFormula.h"
 #include "VisualMeshCut.h"
 
 #include <algorithm>
@@ -25,12 +26,6 @@ inline double frameScale(const std::array<Vector2, 3>& frame)
 {
   return std::max(
     { (frame[1] - frame[0]).norm(), (frame[2] - frame[1]).norm(), (frame[0] - frame[2]).norm() });
-}
-
-/// A point given by barycentric parameters in the frame (formula 5-1).
-inline Vector2 planarPoint(const std::array<Vector2, 3>& frame, const Vector3& parameters)
-{
-  return parameters[0] * frame[0] + parameters[1] * frame[1] + parameters[2] * frame[2];
 }
 
 /// The region's border bulges out of the triangle by this fraction of a
