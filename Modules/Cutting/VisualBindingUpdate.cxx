@@ -1032,6 +1032,7 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
       }
   for (int v : result.reboundVertices)
     seen[v] = -1;
+  noteBindingNodes(result.reboundVertices);
   result.changedTriangles = sorted(std::move(context.changedTriangles));
   while (!result.changedTriangles.empty() &&
          result.changedTriangles.back() >= static_cast<int>(Mesh.triangleCount()))

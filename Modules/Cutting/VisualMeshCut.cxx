@@ -392,6 +392,10 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
   }
   Regions.resize(binding.collisionTriangles.size());
   SplitHistory = CollisionSplitHistory(binding.collisionTriangles.size());
+  // Before any cut, node t is collision triangle t.
+  BindingNodes.resize(Bindings.size());
+  for (std::size_t v = 0; v < Bindings.size(); ++v)
+    BindingNodes[v] = Bindings[v].kind == BindingKind::CollisionTriangle ? Bindings[v].element : -1;
   for (std::size_t t = 0; t < TriangleRegion.size(); ++t)
   {
     const int region = TriangleRegion[t];
@@ -509,6 +513,7 @@ int CuttableVisualMesh::addVertexCopy(int source)
     Mesh.normals.push_back(Mesh.normals[source]);
   Mesh.pointAttributes.appendCopyOf(source);
   Bindings.push_back(Bindings[source]);
+  BindingNodes.push_back(BindingNodes[source]);
   return v;
 }
 
@@ -654,7 +659,7 @@ void CuttableVisualMesh::bindToEdge(int v, int a, int b, double fromA, int side)
 
 Vector3 CuttableVisualMesh::parametersIn(int v, int triangle, const Triangle& corners) const
 {
-  const VisualVertexBinding& b = Bindings[v];
+  const VisualVertexBinding b = binding(v);
   Vector3 result = Vector3::Zero();
   if (b.kind == BindingKind::CollisionTriangle && b.element == triangle)
     return b.parameters;
@@ -720,9 +725,43 @@ std::size_t CuttableVisualMesh::cutSurfaceTriangleCount() const
     std::count(TriangleMaterial.begin(), TriangleMaterial.end(), VisualMaterial::CutSurface));
 }
 
+VisualVertexBinding CuttableVisualMesh::binding(int v) const
+{
+  VisualVertexBinding b = Bindings[v];
+  const int node = BindingNodes[v];
+  if (node >= 0 && !SplitHistory.isCurrent(node))
+  {
+    const CollisionSplitHistory::Resolved resolved = SplitHistory.resolve(node, b.parameters);
+    b.element = SplitHistory.triangleOf(resolved.node);
+    b.parameters = resolved.parameters;
+  }
+  return b;
+}
+
+void CuttableVisualMesh::resolveBinding(int v)
+{
+  const int node = BindingNodes[v];
+  if (node < 0 || SplitHistory.isCurrent(node))
+    return;
+  const CollisionSplitHistory::Resolved resolved =
+    SplitHistory.resolve(node, Bindings[v].parameters);
+  Bindings[v].element = SplitHistory.triangleOf(resolved.node);
+  Bindings[v].parameters = resolved.parameters;
+  BindingNodes[v] = resolved.node;
+}
+
+void CuttableVisualMesh::noteBindingNodes(const std::vector<int>& vertices)
+{
+  BindingNodes.resize(Bindings.size(), -1);
+  for (int v : vertices)
+    BindingNodes[v] = Bindings[v].kind == BindingKind::CollisionTriangle
+                        ? SplitHistory.currentNode(Bindings[v].element)
+                        : -1;
+}
+
 int CuttableVisualMesh::collisionTriangleOf(int v, const CuttableCollisionMesh& collision) const
 {
-  const VisualVertexBinding& b = Bindings[v];
+  const VisualVertexBinding b = binding(v);
   switch (b.kind)
   {
     case BindingKind::CollisionTriangle:
@@ -1501,6 +1540,7 @@ void CuttableVisualMesh::appendInserted(const TriangleMesh& out,
       into.values.insert(into.values.end(), from.element(i), from.element(i) + from.components);
     }
     Bindings.emplace_back();
+    BindingNodes.push_back(-1);
   }
   for (std::size_t c = globalTexture.size(); c < out.textureCoordinates.size(); ++c)
   {

@@ -188,6 +188,13 @@ public:
   /// Whether the edge's two sides meet on the rim (one path for both).
   bool isRimEdge(int a, int b) const;
   std::size_t cutSurfaceTriangleCount() const;
+  /// Visual vertex v's binding: where a cut left it in a collision triangle
+  /// split since, resolved through the split history (the eager binding,
+  /// bit for bit; CollisionSplitHistory.h).
+  VisualVertexBinding binding(int v) const;
+  /// The split history's node whose triangle a vertex bound inside one has
+  /// its parameters in (-1 for a vertex bound to an edge or a vertex).
+  int bindingNode(int v) const { return BindingNodes[static_cast<std::size_t>(v)]; }
   /// The splits of the collision triangles so far, in the order cut: a
   /// binding taken before a cut (node = its triangle then) resolves through
   /// it to the eager binding of today (CollisionSplitHistory.h).
@@ -380,6 +387,12 @@ private:
   bool boundToEdge(int v, int a, int b) const;
   std::vector<double> pathParameters(const std::vector<int>& path, int a, int b) const;
   void bindToEdge(int v, int a, int b, double fromA, int side);
+  /// Writes v's resolved binding back (nothing if it is current).
+  void resolveBinding(int v);
+  /// Each of `vertices` (bound anew by this cut) bound to the current node
+  /// of its triangle; vertices made since the last note, unbound (-1) until
+  /// then.
+  void noteBindingNodes(const std::vector<int>& vertices);
 
   SurfacePoint featurePoint(const RegionCut& region,
     int vertex,
@@ -589,6 +602,8 @@ private:
   /// Per collision triangle: its region's visual triangles on side -1, +1.
   std::vector<std::array<std::vector<int>, 2>> Regions;
   CollisionSplitHistory SplitHistory;
+  /// Per visual vertex: its binding's node in SplitHistory (bindingNode).
+  std::vector<int> BindingNodes;
   std::unordered_map<std::uint64_t, EdgePaths> Paths;
   std::unordered_map<std::uint64_t, CutStrip> Strips;
   /// Per collision vertex on a cut: the cut-surface vertices of its column

@@ -268,9 +268,21 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
   if (!closed || report.unreferencedVertices.count > 0)
     return openVisualMeshFailure(visual, collision, report);
   const auto& edges = visual.collisionEdges();
+  const CollisionSplitHistory& history = visual.splitHistory();
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
   {
     const VisualVertexBinding& b = visual.bindings()[v];
+    // A binding inside a collision triangle knows its node in the split
+    // history: the triangle's current one (every binding is rebound by the
+    // cut that splits its triangle).
+    const int node = visual.bindingNode(static_cast<int>(v));
+    const bool triangleBound = b.kind == BindingKind::CollisionTriangle;
+    if (triangleBound
+          ? node < 0 || !history.isCurrent(node) || history.triangleOf(node) != b.element
+          : node != -1)
+      return ::testing::AssertionFailure()
+             << "visual vertex " << v << " (kind " << static_cast<int>(b.kind) << ", element "
+             << b.element << ") has split history node " << node;
     bool alive = false;
     if (b.kind == BindingKind::CollisionVertex)
       alive = b.element >= 0 && b.element < static_cast<int>(collision.vertexCount()) &&
