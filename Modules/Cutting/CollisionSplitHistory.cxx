@@ -74,9 +74,9 @@ void CollisionSplitHistory::record(const CollisionTriangleSplit& split,
   for (std::size_t c = 0; c < split.children.size(); ++c)
   {
     const auto& corners = split.childCorners[c];
-    Pieces.push_back({ { planarPoint(record.frame, corners[0]),
+    Pieces.push_back(planePiece({ { planarPoint(record.frame, corners[0]),
       planarPoint(record.frame, corners[1]),
-      planarPoint(record.frame, corners[2]) } });
+      planarPoint(record.frame, corners[2]) } }));
     const PlaneToChild toChild(record.frame, inverses[c]);
     Maps.push_back(toChild.map());
     Offsets.push_back(toChild.offset());

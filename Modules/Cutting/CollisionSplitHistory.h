@@ -27,6 +27,14 @@
 namespace thintissue
 {
 
+/// A triangle of a plane as its barycentric map: its first corner and the
+/// inverse of its sides' matrix (SplitFormula.h's pieceContaining).
+struct PlanePiece
+{
+  Vector2 origin;
+  Eigen::Matrix2d inverse;
+};
+
 class THINTISSUECUTTING_EXPORT CollisionSplitHistory
 {
 public:
@@ -85,7 +93,7 @@ private:
   /// Per piece of a split: its corners in the parent's plane, the affine map
   /// of formula 5-2 (child parameters = map * p + offset, p a plane point)
   /// and its node.
-  std::vector<std::array<Vector2, 3>> Pieces;
+  std::vector<PlanePiece> Pieces;
   std::vector<Eigen::Matrix<double, 3, 2>> Maps;
   std::vector<Vector3> Offsets;
   std::vector<int> ChildNodes;

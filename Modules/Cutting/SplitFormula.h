@@ -6,6 +6,7 @@
 #define SplitFormula_h
 
 #include "CollisionMeshCut.h"
+#include "CollisionSplitHistory.h"
 
 #include <Eigen/LU>
 
@@ -34,21 +35,23 @@ inline Vector2 planarPoint(const std::array<Vector2, 3>& frame, const Vector3& p
   return parameters[0] * frame[0] + parameters[1] * frame[1] + parameters[2] * frame[2];
 }
 
-/// The piece (a triangle in the plane) a point lies in, or is nearest to:
-/// the one where its smallest barycentric coordinate is largest.
-inline int pieceContaining(const std::array<Vector2, 3>* pieces,
-  std::size_t count,
-  const Vector2& x)
+inline PlanePiece planePiece(const std::array<Vector2, 3>& corners)
+{
+  Eigen::Matrix2d m;
+  m.col(0) = corners[1] - corners[0];
+  m.col(1) = corners[2] - corners[0];
+  return { corners[0], m.inverse() };
+}
+
+/// The piece a point lies in, or is nearest to: the one where its smallest
+/// barycentric coordinate is largest.
+inline int pieceContaining(const PlanePiece* pieces, std::size_t count, const Vector2& x)
 {
   int best = 0;
   double bestMinimum = -std::numeric_limits<double>::infinity();
   for (std::size_t c = 0; c < count; ++c)
   {
-    const auto& p = pieces[c];
-    Eigen::Matrix2d m;
-    m.col(0) = p[1] - p[0];
-    m.col(1) = p[2] - p[0];
-    const Vector2 bc = m.inverse() * (x - p[0]);
+    const Vector2 bc = pieces[c].inverse * (x - pieces[c].origin);
     const double minimum = std::min({ 1.0 - bc.x() - bc.y(), bc.x(), bc.y() });
     if (minimum > bestMinimum)
     {
@@ -59,9 +62,28 @@ inline int pieceContaining(const std::array<Vector2, 3>* pieces,
   return best;
 }
 
-inline int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vector2& x)
+inline int pieceContaining(const std::vector<PlanePiece>& pieces, const Vector2& x)
 {
   return pieceContaining(pieces.data(), pieces.size(), x);
+}
+
+/// The same for pieces given by their corners.
+inline int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vector2& x)
+{
+  int best = 0;
+  double bestMinimum = -std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < pieces.size(); ++c)
+  {
+    const PlanePiece piece = planePiece(pieces[c]);
+    const Vector2 bc = piece.inverse * (x - piece.origin);
+    const double minimum = std::min({ 1.0 - bc.x() - bc.y(), bc.x(), bc.y() });
+    if (minimum > bestMinimum)
+    {
+      bestMinimum = minimum;
+      best = static_cast<int>(c);
+    }
+  }
+  return best;
 }
 
 /// Formula 5-2's M^-1 per piece of the split.

@@ -355,7 +355,7 @@ bool TissueCutter::moveToBranchCopy(int v, int holder)
 
 void TissueCutter::noteRevisits(int v)
 {
-  if (Visual.bindings()[v].kind == BindingKind::CollisionTriangle)
+  if (Visual.bindingKind(v) == BindingKind::CollisionTriangle)
     return;
   const int original = Branches.originalOf(VisualEmbedding.hexahedron(v));
   if (WatchedIn[v] != original)
@@ -493,12 +493,44 @@ std::vector<int> TissueCutter::reembedVisual(const TissueCutReport& report)
   for (std::size_t i = 0; i < unique.size(); ++i)
     if (moveToBranchCopy(unique[i], holders[i]) || unique[i] >= firstNew)
       moved.push_back(unique[i]);
+  followLeftToHistory(report, moved);
   for (int v : vertices)
   {
     VisualSeen[v] = 0;
     noteRevisits(v);
   }
   return moved;
+}
+
+// The vertices the visual cut left to the split history (lazy binding)
+// and has not revisited above: each goes to the copy of its hexahedron
+// holding the triangle its binding resolves to. The vertices of a piece
+// share a few hexahedra: each (hexahedron, triangle) holder is found once.
+void TissueCutter::followLeftToHistory(const TissueCutReport& report, std::vector<int>& moved)
+{
+  std::array<int, 3> last{ { -1, -1, -1 } }; // hexahedron, triangle, holder
+  std::vector<std::array<int, 3>> found;
+  for (const auto& [v, triangle] : report.visual.leftToHistory)
+  {
+    if (VisualSeen[v])
+      continue;
+    const int h = VisualEmbedding.hexahedron(v);
+    if (last[0] != h || last[1] != triangle)
+    {
+      const auto known = std::find_if(found.begin(),
+        found.end(),
+        [&](const std::array<int, 3>& f) { return f[0] == h && f[1] == triangle; });
+      if (known != found.end())
+        last = *known;
+      else
+      {
+        last = { { h, triangle, Branches.copyHolding(h, triangle) } };
+        found.push_back(last);
+      }
+    }
+    if (moveToBranchCopy(v, last[2]))
+      moved.push_back(v);
+  }
 }
 
 TissueCutReport TissueCutter::cut(const Blade& blade)

@@ -221,6 +221,10 @@ private:
   int branchHolder(int visualVertex) const;
   bool moveToBranchCopy(int visualVertex);
   bool moveToBranchCopy(int visualVertex, int holder);
+  /// The vertices the visual cut left to the split history, moved to the
+  /// copy holding their resolved triangle where it changed (appended to
+  /// `moved`).
+  void followLeftToHistory(const TissueCutReport& report, std::vector<int>& moved);
   void noteRevisits(int visualVertex);
   void takeRevisits(const TissueCutReport& report, std::vector<int>& vertices);
   void handleFreePieces(TissueCutReport& report);

@@ -85,6 +85,7 @@ void CuttableVisualMesh::rebindFarTriangles(RegionCut& region,
   for (const Eigen::Matrix3d& inverse : inverses)
     toChild.emplace_back(region.frame, inverse);
   const std::size_t firstFar = region.rebound.size();
+  const std::size_t firstLeft = region.leftToHistory.size();
   std::vector<int>& localIndex = worker.localIndex;
   if (localIndex.size() < Mesh.vertexCount())
     localIndex.resize(Mesh.vertexCount(), -1);
@@ -99,14 +100,22 @@ void CuttableVisualMesh::rebindFarTriangles(RegionCut& region,
         continue;
       localIndex[v] = -2;
       VisualVertexBinding& b = Bindings[v];
-      b.element = split.children[far.piece];
       // Strictly inside the parent (separateFarTriangles): not bulged.
-      b.parameters = toChild[far.piece].parameters(planarPoint(region.frame, b.parameters));
+      const Vector2 planar = planarPoint(region.frame, b.parameters);
+      if (leftToHistory(region, b.parameters, planar, far.piece))
+      {
+        region.leftToHistory.push_back({ { v, split.children[far.piece] } });
+        continue;
+      }
+      b.element = split.children[far.piece];
+      b.parameters = toChild[far.piece].parameters(planar);
       region.rebound.push_back(v);
     }
   }
   for (std::size_t i = firstFar; i < region.rebound.size(); ++i)
     localIndex[region.rebound[i]] = -1;
+  for (std::size_t i = firstLeft; i < region.leftToHistory.size(); ++i)
+    localIndex[region.leftToHistory[i][0]] = -1;
   listPiecesInRegionOrder(region, worker.buffers, split);
 }
 
@@ -402,7 +411,7 @@ void CuttableVisualMesh::rebindPieces(RegionCut& region,
     const int size = pieceStart[p + 1] - pieceStart[p];
     const int c = pieceContaining(region.pieces, centroids[p] / (3.0 * size));
     rebindPiece(
-      region, members.data() + pieceStart[p], size, split.children[c], inverses[c], buffers);
+      region, members.data() + pieceStart[p], size, c, split.children[c], inverses[c], buffers);
   }
 }
 
@@ -474,6 +483,7 @@ bool CuttableVisualMesh::locatePieces(RegionCut& region,
       rebindPiece(region,
         members.data() + pieceStart[c],
         pieceStart[c + 1] - pieceStart[c],
+        c,
         split.children[c],
         inverses[c],
         buffers);
@@ -535,6 +545,7 @@ bool CuttableVisualMesh::pieceLocator(const RegionCut& region,
 void CuttableVisualMesh::rebindPiece(RegionCut& region,
   const int* members,
   int memberCount,
+  int piece,
   int child,
   const Eigen::Matrix3d& inverse,
   CutBuffers& buffers)
@@ -561,6 +572,11 @@ void CuttableVisualMesh::rebindPiece(RegionCut& region,
       rebindable[local] = 0;
       const int v = region.vertices[local];
       VisualVertexBinding& b = Bindings[v];
+      if (leftToHistory(region, b.parameters, region.planar[local], piece))
+      {
+        region.leftToHistory.push_back({ { v, child } });
+        continue;
+      }
       // The parent parameters of where the vertex lies in the plane it
       // was cut in (its binding's own, unless a fold was repaired there).
       b.element = child;
@@ -568,6 +584,38 @@ void CuttableVisualMesh::rebindPiece(RegionCut& region,
       region.rebound.push_back(v);
     }
   }
+}
+
+// The history resolves a vertex from its own parameters: in the plane
+// point they give (no bulge, no fold repair moved it), to the piece whose
+// smallest barycentric coordinate is largest there, with the same map.
+bool CuttableVisualMesh::leftToHistory(const RegionCut& region,
+  const Vector3& parameters,
+  const Vector2& planar,
+  int piece) const
+{
+  return Settings.lazyBinding && parameters.minCoeff() > 0.0 &&
+         planar == planarPoint(region.frame, parameters) &&
+         pieceContaining(region.historyPieces, planar) == piece;
+}
+
+void CuttableVisualMesh::resolveSplitRegions(const CollisionCutResult& cut)
+{
+  if (!LeftToHistory)
+    return;
+  for (const CollisionTriangleSplit& split : cut.splits)
+    for (const std::vector<int>& region : Regions[split.parent])
+      for (int t : region)
+        for (int v : Mesh.triangles[t])
+          resolveBinding(v);
+}
+
+std::vector<VisualVertexBinding> CuttableVisualMesh::bindings() const
+{
+  std::vector<VisualVertexBinding> all(Bindings.size());
+  for (std::size_t v = 0; v < all.size(); ++v)
+    all[v] = binding(static_cast<int>(v));
+  return all;
 }
 
 // The visual vertex of each new collision vertex inside an edge, and the
@@ -980,6 +1028,7 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
   context.worker = &Workers.front();
   try
   {
+    resolveSplitRegions(cut);
     splitEdgePaths(context);
     traceRegionCuts(context);
     remeshRegions(context);
@@ -997,7 +1046,12 @@ VisualCutResult CuttableVisualMesh::cut(const CuttableCollisionMesh& collision,
     context.regions.end(),
     [](const RegionCut& region) { return region.locatedPieces; }));
   for (const RegionCut& region : context.regions)
+  {
     result.farTriangles += region.far.size();
+    result.leftToHistory.insert(
+      result.leftToHistory.end(), region.leftToHistory.begin(), region.leftToHistory.end());
+  }
+  LeftToHistory = LeftToHistory || !result.leftToHistory.empty();
   finishEdgePoints(context);
   openVisualMesh(collision, context);
   updateEdgePaths(collision, context);

@@ -376,6 +376,10 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
     throw InvalidInputError(label + ": the binding does not match its visual mesh");
   }
   TriangleMaterial.assign(Mesh.triangleCount(), VisualMaterial::Surface);
+  // Before any cut, node t is collision triangle t.
+  BindingNodes.resize(Bindings.size());
+  for (std::size_t v = 0; v < Bindings.size(); ++v)
+    BindingNodes[v] = Bindings[v].kind == BindingKind::CollisionTriangle ? Bindings[v].element : -1;
   reserveRoom();
   // The binding pairs (+, -); here slots are - then +, as paths, then the
   // crease's.
@@ -392,10 +396,6 @@ CuttableVisualMesh::CuttableVisualMesh(const VisualCollisionBinding& binding,
   }
   Regions.resize(binding.collisionTriangles.size());
   SplitHistory = CollisionSplitHistory(binding.collisionTriangles.size());
-  // Before any cut, node t is collision triangle t.
-  BindingNodes.resize(Bindings.size());
-  for (std::size_t v = 0; v < Bindings.size(); ++v)
-    BindingNodes[v] = Bindings[v].kind == BindingKind::CollisionTriangle ? Bindings[v].element : -1;
   for (std::size_t t = 0; t < TriangleRegion.size(); ++t)
   {
     const int region = TriangleRegion[t];
@@ -462,6 +462,7 @@ void CuttableVisualMesh::reserveRoom()
   if (Mesh.hasNormals())
     reserveTouched(Mesh.normals, vertices, Vector3::Zero().eval());
   reserveTouched(Bindings, vertices);
+  reserveTouched(BindingNodes, vertices);
   // Point attributes and texture coordinates too: growing one of them in a
   // cut copied it into fresh pages (on the 1M-triangle sheet, 2,000 page
   // faults, three quarters of the cut).
@@ -725,16 +726,13 @@ std::size_t CuttableVisualMesh::cutSurfaceTriangleCount() const
     std::count(TriangleMaterial.begin(), TriangleMaterial.end(), VisualMaterial::CutSurface));
 }
 
-VisualVertexBinding CuttableVisualMesh::binding(int v) const
+VisualVertexBinding CuttableVisualMesh::resolvedBinding(int v) const
 {
   VisualVertexBinding b = Bindings[v];
-  const int node = BindingNodes[v];
-  if (node >= 0 && !SplitHistory.isCurrent(node))
-  {
-    const CollisionSplitHistory::Resolved resolved = SplitHistory.resolve(node, b.parameters);
-    b.element = SplitHistory.triangleOf(resolved.node);
-    b.parameters = resolved.parameters;
-  }
+  const CollisionSplitHistory::Resolved resolved =
+    SplitHistory.resolve(BindingNodes[v], b.parameters);
+  b.element = SplitHistory.triangleOf(resolved.node);
+  b.parameters = resolved.parameters;
   return b;
 }
 
@@ -761,11 +759,14 @@ void CuttableVisualMesh::noteBindingNodes(const std::vector<int>& vertices)
 
 int CuttableVisualMesh::collisionTriangleOf(int v, const CuttableCollisionMesh& collision) const
 {
-  const VisualVertexBinding b = binding(v);
+  const VisualVertexBinding& b = Bindings[v];
+  const int node = BindingNodes[v];
   switch (b.kind)
   {
     case BindingKind::CollisionTriangle:
-      return b.element;
+      return node < 0 || SplitHistory.isCurrent(node)
+               ? b.element
+               : SplitHistory.triangleOf(SplitHistory.resolve(node, b.parameters).node);
     case BindingKind::CollisionEdge:
       return collision.trianglesOfEdge(Edges[b.element][0], Edges[b.element][1])[0];
     case BindingKind::CollisionVertex:
@@ -949,9 +950,14 @@ void CuttableVisualMesh::traceRegion(RegionCut& region,
   const double scale = frameScale(region.frame);
   region.candidate.assign(region.triangles.size(), 0);
   for (const auto& corners : split.childCorners)
+  {
     region.pieces.push_back({ { bulgedPoint(region.frame, corners[0]),
       bulgedPoint(region.frame, corners[1]),
       bulgedPoint(region.frame, corners[2]) } });
+    region.historyPieces.push_back(planePiece({ { planarPoint(region.frame, corners[0]),
+      planarPoint(region.frame, corners[1]),
+      planarPoint(region.frame, corners[2]) } }));
+  }
   for (CrossingPath& crossing : region.crossings)
     traceCut(region, scale, crossing, worker, context);
   selectTouchedTriangles(region, worker);

@@ -97,6 +97,14 @@ struct VisualCutSettings
   /// (callgrind, the short cut of the sheets: break-even near 2,000). 0:
   /// always (the property tests), the largest value: never.
   std::size_t separatedRegionTriangles = 2000;
+  /// The lazy binding (issue 13): an inner vertex of a split region whose
+  /// new binding the split history gives bit for bit (the piece its own
+  /// parameters lie in, no fold repaired where it lies) is left bound to
+  /// the parent and resolved when read (binding(v)); the cut neither
+  /// rebinds nor reports it, so the visual re-embedding does not revisit
+  /// it. false: every vertex rebound at once (the twin the tests compare
+  /// with, resolved binding for binding).
+  bool lazyBinding = true;
 };
 
 /// How far the cut surface departs from the smooth cut (6.4.4): over the
@@ -133,6 +141,11 @@ struct VisualCutResult
   /// rebound where they lie, neither laid out nor traced (see
   /// piecesByLocation).
   std::size_t farTriangles = 0;
+  /// Inner vertices of those regions left to the split history
+  /// (VisualCutSettings::lazyBinding), not in reboundVertices: each with
+  /// the collision triangle its binding resolves to now (its hexahedron
+  /// copy may have to follow it), in region order.
+  std::vector<std::array<int, 2>> leftToHistory;
   bool changed() const { return !changedTriangles.empty(); }
 };
 
@@ -167,7 +180,8 @@ public:
 
   /// The visual surface with its cut surfaces (rest positions).
   const TriangleMesh& mesh() const { return Mesh; }
-  const std::vector<VisualVertexBinding>& bindings() const { return Bindings; }
+  /// Every visual vertex's binding (binding(v) for each; a copy).
+  std::vector<VisualVertexBinding> bindings() const;
   /// Collision edges the bindings refer to (lower, higher): the binding's,
   /// then those made by cuts, in the order made.
   const std::vector<std::array<int, 2>>& collisionEdges() const { return Edges; }
@@ -191,10 +205,17 @@ public:
   /// Visual vertex v's binding: where a cut left it in a collision triangle
   /// split since, resolved through the split history (the eager binding,
   /// bit for bit; CollisionSplitHistory.h).
-  VisualVertexBinding binding(int v) const;
+  VisualVertexBinding binding(int v) const
+  {
+    const int node = BindingNodes[static_cast<std::size_t>(v)];
+    return node < 0 || SplitHistory.isCurrent(node) ? Bindings[static_cast<std::size_t>(v)]
+                                                    : resolvedBinding(v);
+  }
   /// The split history's node whose triangle a vertex bound inside one has
   /// its parameters in (-1 for a vertex bound to an edge or a vertex).
   int bindingNode(int v) const { return BindingNodes[static_cast<std::size_t>(v)]; }
+  /// What visual vertex v is bound to (never changed by resolving it).
+  BindingKind bindingKind(int v) const { return Bindings[static_cast<std::size_t>(v)].kind; }
   /// The splits of the collision triangles so far, in the order cut: a
   /// binding taken before a cut (node = its triangle then) resolves through
   /// it to the eager binding of today (CollisionSplitHistory.h).
@@ -387,6 +408,8 @@ private:
   bool boundToEdge(int v, int a, int b) const;
   std::vector<double> pathParameters(const std::vector<int>& path, int a, int b) const;
   void bindToEdge(int v, int a, int b, double fromA, int side);
+  /// binding(v) for a vertex whose node was split since.
+  VisualVertexBinding resolvedBinding(int v) const;
   /// Writes v's resolved binding back (nothing if it is current).
   void resolveBinding(int v);
   /// Each of `vertices` (bound anew by this cut) bound to the current node
@@ -467,9 +490,21 @@ private:
   void rebindPiece(RegionCut& region,
     const int* members,
     int memberCount,
+    int piece,
     int child,
     const Eigen::Matrix3d& inverse,
     CutBuffers& buffers);
+  /// Whether a vertex with parent parameters `parameters`, at `planar` in
+  /// the region's plane and going to piece `piece`, may be left to the
+  /// split history (VisualCutSettings::lazyBinding): it resolves to what
+  /// formula 5-2 gives here, bit for bit.
+  bool leftToHistory(const RegionCut& region,
+    const Vector3& parameters,
+    const Vector2& planar,
+    int piece) const;
+  /// Resolves the bindings of the split triangles' regions before a cut
+  /// reads them (once a cut has left some to the history).
+  void resolveSplitRegions(const CollisionCutResult& cut);
   /// Per local vertex: whether formula 5-2 rebinds it (bound to the parent,
   /// off the traced cuts); rebindPiece clears it once done.
   void markRebindable(const RegionCut& region,
@@ -604,6 +639,8 @@ private:
   CollisionSplitHistory SplitHistory;
   /// Per visual vertex: its binding's node in SplitHistory (bindingNode).
   std::vector<int> BindingNodes;
+  /// A cut has left bindings to the history (resolveSplitRegions has work).
+  bool LeftToHistory = false;
   std::unordered_map<std::uint64_t, EdgePaths> Paths;
   std::unordered_map<std::uint64_t, CutStrip> Strips;
   /// Per collision vertex on a cut: the cut-surface vertices of its column

@@ -177,8 +177,15 @@ struct CuttableVisualMesh::RegionCut
   bool foldFree = false;
   /// Its pieces were found by location (locatePieces).
   bool locatedPieces = false;
-  /// The pieces of the split triangle in that plane.
+  /// The pieces of the split triangle in that plane (border bulged), and
+  /// as the split history places them (corners not bulged: the lazy
+  /// binding's test, leftToHistory).
   std::vector<std::array<Vector2, 3>> pieces;
+  std::vector<PlanePiece> historyPieces;
+  /// Inner vertices left bound to the parent for the split history to
+  /// resolve (VisualCutSettings::lazyBinding), each with the piece's
+  /// collision triangle it resolves to.
+  std::vector<std::array<int, 2>> leftToHistory;
   std::vector<CrossingPath> crossings;
   /// The triangles a traced cut touches (re-meshed), and the region's
   /// triangles once re-meshed.

@@ -133,7 +133,7 @@ inline EdgeBindingOffset largestEdgeBindingOffset(const CuttableVisualMesh& visu
   const auto& rest = collision.restPositions();
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
   {
-    const VisualVertexBinding& b = visual.bindings()[v];
+    const VisualVertexBinding b = visual.binding(static_cast<int>(v));
     if (b.kind != BindingKind::CollisionEdge)
       continue;
     const auto& e = edges[b.element];
@@ -178,7 +178,7 @@ inline ::testing::AssertionResult openVisualMeshFailure(const CuttableVisualMesh
   int shown = 0;
   auto describe = [&](int v)
   {
-    const VisualVertexBinding& b = visual.bindings()[v];
+    const VisualVertexBinding b = visual.binding(static_cast<int>(v));
     std::ostringstream text;
     text << v << "[kind " << int(b.kind) << " element " << b.element;
     if (b.kind == BindingKind::CollisionEdge)
@@ -225,7 +225,7 @@ inline ::testing::AssertionResult openVisualMeshFailure(const CuttableVisualMesh
             << int(visual.triangleSides()[t]) << "):";
     for (int v : mesh.triangles[t])
     {
-      const VisualVertexBinding& b = visual.bindings()[v];
+      const VisualVertexBinding b = visual.binding(static_cast<int>(v));
       failure << " " << v << " [kind " << int(b.kind) << " element " << b.element << " side "
               << b.side << " t " << b.parameters.transpose() << " at "
               << mesh.positions[v].transpose() << "]";
@@ -271,15 +271,19 @@ inline ::testing::AssertionResult visualMeshIsValid(const CuttableVisualMesh& vi
   const CollisionSplitHistory& history = visual.splitHistory();
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
   {
-    const VisualVertexBinding& b = visual.bindings()[v];
+    const VisualVertexBinding b = visual.binding(static_cast<int>(v));
     // A binding inside a collision triangle knows its node in the split
-    // history: the triangle's current one (every binding is rebound by the
-    // cut that splits its triangle).
+    // history: its triangle's current one, or one split since (left to the
+    // history by the lazy binding) that resolves to a current node.
     const int node = visual.bindingNode(static_cast<int>(v));
     const bool triangleBound = b.kind == BindingKind::CollisionTriangle;
-    if (triangleBound
-          ? node < 0 || !history.isCurrent(node) || history.triangleOf(node) != b.element
-          : node != -1)
+    const auto resolvesToCurrent = [&]
+    {
+      const auto resolved = history.resolve(node, Vector3::Constant(1.0 / 3.0));
+      return history.isCurrent(resolved.node) &&
+             (!history.isCurrent(node) || history.triangleOf(node) == b.element);
+    };
+    if (triangleBound ? node < 0 || !resolvesToCurrent() : node != -1)
       return ::testing::AssertionFailure()
              << "visual vertex " << v << " (kind " << static_cast<int>(b.kind) << ", element "
              << b.element << ") has split history node " << node;
@@ -382,12 +386,12 @@ inline ::testing::AssertionResult sameVisualMesh(const CuttableVisualMesh& a,
     return ::testing::AssertionFailure() << "texture coordinates differ";
   if (a.triangleRegions() != b.triangleRegions() || a.triangleSides() != b.triangleSides())
     return ::testing::AssertionFailure() << "the triangles' regions differ";
-  if (a.bindings().size() != b.bindings().size())
+  if (a.mesh().vertexCount() != b.mesh().vertexCount())
     return ::testing::AssertionFailure() << "binding counts differ";
-  for (std::size_t v = 0; v < a.bindings().size(); ++v)
+  for (std::size_t v = 0; v < a.mesh().vertexCount(); ++v)
   {
-    const VisualVertexBinding& p = a.bindings()[v];
-    const VisualVertexBinding& q = b.bindings()[v];
+    const VisualVertexBinding p = a.binding(static_cast<int>(v));
+    const VisualVertexBinding q = b.binding(static_cast<int>(v));
     if (p.kind != q.kind || p.element != q.element || p.side != q.side ||
         p.parameters != q.parameters)
       return ::testing::AssertionFailure() << "binding of visual vertex " << v << " differs";

@@ -65,6 +65,8 @@ public:
         twinSettings.visual.parallelRegionTriangles = std::numeric_limits<std::size_t>::max();
       if (CompareWith == Twin::UnionFindPieces)
         twinSettings.visual.piecesByLocation = false;
+      if (CompareWith == Twin::EagerBinding)
+        twinSettings.visual.lazyBinding = false;
       TissueCutter cutter = Binding ? TissueCutter(*Binding, Model.simulation, &fem, settings)
                                     : TissueCutter(Model.collision, Model.simulation, &fem);
       // The twin cuts the same its own way (CompareWith).
@@ -104,6 +106,7 @@ public:
           SplitRegions += report.visual.splitRegions;
           RegionsLocated += report.visual.regionsLocated;
           FarTriangles += report.visual.farTriangles;
+          LazyVertices += report.visual.leftToHistory.size();
           // Counts grow by what the cut touched only: copies of touched
           // hexahedra, at most one edge point and copies per changed triangle.
           const auto& touched = report.simulation.touchedHexahedra;
@@ -130,7 +133,10 @@ public:
           }
           ASSERT_TRUE(sameVisualState(cutter, *twin))
             << Model.name << ", episode " << e << ", sweep " << s << ": against the twin "
-            << (CompareWith == Twin::OneThread ? "on one thread" : "of union-find pieces");
+            << (CompareWith == Twin::OneThread
+                   ? "on one thread"
+                   : (CompareWith == Twin::EagerBinding ? "of eager bindings"
+                                                        : "of union-find pieces"));
         }
         ++Sweeps;
         ASSERT_TRUE(cutterIsConsistent(cutter, Model.simulation, rimOffset))
@@ -151,18 +157,23 @@ public:
   /// Over all sweeps: triangles of split regions that lay far from the cut
   /// (VisualCutResult::farTriangles).
   std::size_t FarTriangles = 0;
+  /// Inner vertices the cuts left to the split history (lazy binding).
+  std::size_t LazyVertices = 0;
   /// Cut the bound visual mesh too.
   const VisualCollisionBinding* Binding = nullptr;
   /// With a binding, a twin cutter cuts the same blades and must end each
   /// sweep with the same visual mesh, binding and embedding, bit for bit:
   /// on one thread while every episode cuts on several (OneThread), or
   /// finding the pieces of every split region by the union-find
-  /// (UnionFindPieces, against VisualCutSettings::piecesByLocation).
+  /// (UnionFindPieces, against VisualCutSettings::piecesByLocation), or
+  /// rebinding every vertex at once (EagerBinding, against
+  /// VisualCutSettings::lazyBinding: the same resolved bindings).
   enum class Twin
   {
     None,
     OneThread,
-    UnionFindPieces
+    UnionFindPieces,
+    EagerBinding
   };
   Twin CompareWith = Twin::None;
 

@@ -42,7 +42,7 @@ void compare(const std::vector<VisualVertexBinding>& first,
   const CollisionSplitHistory& history = visual.splitHistory();
   for (std::size_t v = 0; v < first.size(); ++v)
   {
-    const VisualVertexBinding& now = visual.bindings()[v];
+    const VisualVertexBinding now = visual.binding(static_cast<int>(v));
     if (!inner(first[v]) || !inner(now))
       continue;
     // Before any cut, node t is triangle t.
@@ -69,6 +69,7 @@ Comparison cutAndCompare(const TissueModel& model, unsigned seed, int cuts)
     model.name, binding.collisionPositions, binding.collisionTriangles, binding.collisionRadii);
   VisualCutSettings settings;
   settings.separatedRegionTriangles = 0; // the far path too
+  settings.lazyBinding = false;          // the eager binding, compared
   CuttableVisualMesh visual(binding, settings);
   const std::vector<VisualVertexBinding> first = visual.bindings();
   const BoundingBox box = model.collision.boundingBox();

@@ -379,6 +379,20 @@ TEST(TissueCutterProperty, PiecesByLocationAreTheUnionFindPieces)
     });
 }
 
+// VisualCutSettings::lazyBinding: the inner vertices a cut leaves to the
+// split history resolve to the bindings a twin that rebinds every vertex at
+// once makes, bit for bit, with the same visual mesh, regions and
+// embedding (the visual re-embedding need not revisit them) after every
+// sweep; and the cuts do leave vertices to it.
+TEST(TissueCutterProperty, TheLazyBindingResolvesToTheEagerBinding)
+{
+  sweepAgainstTwin(RandomSweeps::Twin::EagerBinding,
+    8383u,
+    4 * sweepScale(),
+    [](const RandomSweeps& sweeps, const std::string& name)
+    { EXPECT_GT(sweeps.LazyVertices, 100u) << name; });
+}
+
 namespace
 {
 

@@ -161,7 +161,7 @@ namespace
 /// Formula 5-1: where a visual vertex projects on the collision mesh.
 Vector3 projected(const CuttableVisualMesh& visual, const CuttableCollisionMesh& collision, int v)
 {
-  const VisualVertexBinding& b = visual.bindings()[v];
+  const VisualVertexBinding b = visual.binding(static_cast<int>(v));
   const auto& x = collision.restPositions();
   switch (b.kind)
   {
@@ -200,7 +200,7 @@ TEST(VisualCut, RebindingKeepsEveryVisualVertexWhereItProjected)
   int checked = 0, rebound = 0;
   for (std::size_t v = 0; v < before; ++v)
   {
-    const VisualVertexBinding& b = pair.visual.bindings()[v];
+    const VisualVertexBinding b = pair.visual.binding(static_cast<int>(v));
     if (b.kind != old[v].kind)
       continue; // an inner vertex the cut passed through: now on the cut
     rebound += b.element != old[v].element ? 1 : 0;
