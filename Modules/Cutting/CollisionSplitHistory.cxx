@@ -59,6 +59,22 @@ void CollisionSplitHistory::recordCut(const CollisionCutResult& cut,
     for (int child : split.children)
       known = std::max(known, child + 1);
   }
+  std::size_t pieces = 0;
+  for (const CollisionTriangleSplit& split : cut.splits)
+    pieces += split.children.size();
+  // Room for the cut at once, growing geometrically (a cut's splits had
+  // each grown the arrays of a fresh history).
+  const auto room = [](auto& list, std::size_t more)
+  {
+    if (list.capacity() < list.size() + more)
+      list.reserve(std::max(list.size() + more, 2 * list.capacity()));
+  };
+  room(Nodes, pieces);
+  room(Pieces, pieces);
+  room(Maps, pieces);
+  room(Offsets, pieces);
+  room(ChildNodes, pieces);
+  room(Splits, cut.splits.size());
   for (const CollisionTriangleSplit& split : cut.splits)
     record(split, restPositions);
 }

@@ -594,9 +594,9 @@ bool CuttableVisualMesh::leftToHistory(const RegionCut& region,
   const Vector2& planar,
   int piece) const
 {
-  return Settings.lazyBinding && parameters.minCoeff() > 0.0 &&
+  return Settings.lazyBinding && region.historyPieceCount > 0 && parameters.minCoeff() > 0.0 &&
          planar == planarPoint(region.frame, parameters) &&
-         pieceContaining(region.historyPieces, planar) == piece;
+         pieceContaining(region.historyPieces.data(), region.historyPieceCount, planar) == piece;
 }
 
 void CuttableVisualMesh::resolveSplitRegions(const CollisionCutResult& cut)

@@ -949,14 +949,18 @@ void CuttableVisualMesh::traceRegion(RegionCut& region,
   }
   const double scale = frameScale(region.frame);
   region.candidate.assign(region.triangles.size(), 0);
-  for (const auto& corners : split.childCorners)
+  const bool fits = split.childCorners.size() <= region.historyPieces.size();
+  region.historyPieceCount = fits ? split.childCorners.size() : 0;
+  for (std::size_t c = 0; c < split.childCorners.size(); ++c)
   {
+    const auto& corners = split.childCorners[c];
     region.pieces.push_back({ { bulgedPoint(region.frame, corners[0]),
       bulgedPoint(region.frame, corners[1]),
       bulgedPoint(region.frame, corners[2]) } });
-    region.historyPieces.push_back(planePiece({ { planarPoint(region.frame, corners[0]),
-      planarPoint(region.frame, corners[1]),
-      planarPoint(region.frame, corners[2]) } }));
+    if (fits)
+      region.historyPieces[c] = planePiece({ { planarPoint(region.frame, corners[0]),
+        planarPoint(region.frame, corners[1]),
+        planarPoint(region.frame, corners[2]) } });
   }
   for (CrossingPath& crossing : region.crossings)
     traceCut(region, scale, crossing, worker, context);

@@ -181,7 +181,8 @@ struct CuttableVisualMesh::RegionCut
   /// as the split history places them (corners not bulged: the lazy
   /// binding's test, leftToHistory).
   std::vector<std::array<Vector2, 3>> pieces;
-  std::vector<PlanePiece> historyPieces;
+  std::array<PlanePiece, 4> historyPieces;
+  std::size_t historyPieceCount = 0; ///< 0 when a split has more (none left)
   /// Inner vertices left bound to the parent for the split history to
   /// resolve (VisualCutSettings::lazyBinding), each with the piece's
   /// collision triangle it resolves to.
