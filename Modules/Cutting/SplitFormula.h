@@ -44,37 +44,15 @@ inline PlanePiece planePiece(const std::array<Vector2, 3>& corners)
 }
 
 /// The piece a point lies in, or is nearest to: the one where its smallest
-/// barycentric coordinate is largest.
-inline int pieceContaining(const PlanePiece* pieces, std::size_t count, const Vector2& x)
+/// barycentric coordinate is largest (`pieceAt(c)` gives piece c).
+template <typename PieceAt>
+int pieceContainingAmong(std::size_t count, const PieceAt& pieceAt, const Vector2& x)
 {
   int best = 0;
   double bestMinimum = -std::numeric_limits<double>::infinity();
   for (std::size_t c = 0; c < count; ++c)
   {
-    const Vector2 bc = pieces[c].inverse * (x - pieces[c].origin);
-    const double minimum = std::min({ 1.0 - bc.x() - bc.y(), bc.x(), bc.y() });
-    if (minimum > bestMinimum)
-    {
-      bestMinimum = minimum;
-      best = static_cast<int>(c);
-    }
-  }
-  return best;
-}
-
-inline int pieceContaining(const std::vector<PlanePiece>& pieces, const Vector2& x)
-{
-  return pieceContaining(pieces.data(), pieces.size(), x);
-}
-
-/// The same for pieces given by their corners.
-inline int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vector2& x)
-{
-  int best = 0;
-  double bestMinimum = -std::numeric_limits<double>::infinity();
-  for (std::size_t c = 0; c < pieces.size(); ++c)
-  {
-    const PlanePiece piece = planePiece(pieces[c]);
+    const PlanePiece& piece = pieceAt(c);
     const Vector2 bc = piece.inverse * (x - piece.origin);
     const double minimum = std::min({ 1.0 - bc.x() - bc.y(), bc.x(), bc.y() });
     if (minimum > bestMinimum)
@@ -84,6 +62,20 @@ inline int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, co
     }
   }
   return best;
+}
+
+inline int pieceContaining(const PlanePiece* pieces, std::size_t count, const Vector2& x)
+{
+  return pieceContainingAmong(
+    count, [pieces](std::size_t c) -> const PlanePiece& { return pieces[c]; }, x);
+}
+
+/// The same for pieces given by their corners (each map made as it is
+/// tested: the same products as a PlanePiece kept).
+inline int pieceContaining(const std::vector<std::array<Vector2, 3>>& pieces, const Vector2& x)
+{
+  return pieceContainingAmong(
+    pieces.size(), [&pieces](std::size_t c) { return planePiece(pieces[c]); }, x);
 }
 
 /// Formula 5-2's M^-1 per piece of the split.

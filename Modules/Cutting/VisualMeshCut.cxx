@@ -726,31 +726,26 @@ std::size_t CuttableVisualMesh::cutSurfaceTriangleCount() const
     std::count(TriangleMaterial.begin(), TriangleMaterial.end(), VisualMaterial::CutSurface));
 }
 
-VisualVertexBinding CuttableVisualMesh::resolvedBinding(int v) const
+VisualVertexBinding CuttableVisualMesh::resolvedBinding(int v, int* node) const
 {
   VisualVertexBinding b = Bindings[v];
   const CollisionSplitHistory::Resolved resolved =
     SplitHistory.resolve(BindingNodes[v], b.parameters);
   b.element = SplitHistory.triangleOf(resolved.node);
   b.parameters = resolved.parameters;
+  if (node)
+    *node = resolved.node;
   return b;
 }
 
 void CuttableVisualMesh::resolveBinding(int v)
 {
-  const int node = BindingNodes[v];
-  if (node < 0 || SplitHistory.isCurrent(node))
-    return;
-  const CollisionSplitHistory::Resolved resolved =
-    SplitHistory.resolve(node, Bindings[v].parameters);
-  Bindings[v].element = SplitHistory.triangleOf(resolved.node);
-  Bindings[v].parameters = resolved.parameters;
-  BindingNodes[v] = resolved.node;
+  if (!bindingIsCurrent(v))
+    Bindings[v] = resolvedBinding(v, &BindingNodes[v]);
 }
 
 void CuttableVisualMesh::noteBindingNodes(const std::vector<int>& vertices)
 {
-  BindingNodes.resize(Bindings.size(), -1);
   for (int v : vertices)
     BindingNodes[v] = Bindings[v].kind == BindingKind::CollisionTriangle
                         ? SplitHistory.currentNode(Bindings[v].element)
@@ -760,13 +755,10 @@ void CuttableVisualMesh::noteBindingNodes(const std::vector<int>& vertices)
 int CuttableVisualMesh::collisionTriangleOf(int v, const CuttableCollisionMesh& collision) const
 {
   const VisualVertexBinding& b = Bindings[v];
-  const int node = BindingNodes[v];
   switch (b.kind)
   {
     case BindingKind::CollisionTriangle:
-      return node < 0 || SplitHistory.isCurrent(node)
-               ? b.element
-               : SplitHistory.triangleOf(SplitHistory.resolve(node, b.parameters).node);
+      return bindingIsCurrent(v) ? b.element : resolvedBinding(v).element;
     case BindingKind::CollisionEdge:
       return collision.trianglesOfEdge(Edges[b.element][0], Edges[b.element][1])[0];
     case BindingKind::CollisionVertex:

@@ -101,9 +101,11 @@ struct VisualCutSettings
   /// new binding the split history gives bit for bit (the piece its own
   /// parameters lie in, no fold repaired where it lies) is left bound to
   /// the parent and resolved when read (binding(v)); the cut neither
-  /// rebinds nor reports it, so the visual re-embedding does not revisit
-  /// it. false: every vertex rebound at once (the twin the tests compare
-  /// with, resolved binding for binding).
+  /// rebinds nor reports it as rebound (it lists it in
+  /// VisualCutResult::leftToHistory, where the visual re-embedding finds
+  /// its hexahedron copy once per piece and hexahedron). false: every
+  /// vertex rebound at once (the twin the tests compare with, resolved
+  /// binding for binding).
   bool lazyBinding = true;
 };
 
@@ -207,9 +209,7 @@ public:
   /// bit for bit; CollisionSplitHistory.h).
   VisualVertexBinding binding(int v) const
   {
-    const int node = BindingNodes[static_cast<std::size_t>(v)];
-    return node < 0 || SplitHistory.isCurrent(node) ? Bindings[static_cast<std::size_t>(v)]
-                                                    : resolvedBinding(v);
+    return bindingIsCurrent(v) ? Bindings[static_cast<std::size_t>(v)] : resolvedBinding(v);
   }
   /// The split history's node whose triangle a vertex bound inside one has
   /// its parameters in (-1 for a vertex bound to an edge or a vertex).
@@ -408,13 +408,21 @@ private:
   bool boundToEdge(int v, int a, int b) const;
   std::vector<double> pathParameters(const std::vector<int>& path, int a, int b) const;
   void bindToEdge(int v, int a, int b, double fromA, int side);
-  /// binding(v) for a vertex whose node was split since.
-  VisualVertexBinding resolvedBinding(int v) const;
+  /// Whether v's stored binding is its binding (not left in a node split
+  /// since).
+  bool bindingIsCurrent(int v) const
+  {
+    const int node = BindingNodes[static_cast<std::size_t>(v)];
+    return node < 0 || SplitHistory.isCurrent(node);
+  }
+  /// binding(v) for a vertex whose node was split since, and the node it
+  /// resolves to (in `node` if given).
+  VisualVertexBinding resolvedBinding(int v, int* node = nullptr) const;
   /// Writes v's resolved binding back (nothing if it is current).
   void resolveBinding(int v);
   /// Each of `vertices` (bound anew by this cut) bound to the current node
-  /// of its triangle; vertices made since the last note, unbound (-1) until
-  /// then.
+  /// of its triangle (vertices are made with -1, copies with their
+  /// source's node).
   void noteBindingNodes(const std::vector<int>& vertices);
 
   SurfacePoint featurePoint(const RegionCut& region,

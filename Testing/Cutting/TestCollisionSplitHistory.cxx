@@ -95,6 +95,23 @@ Comparison cutAndCompare(const TissueModel& model, unsigned seed, int cuts)
   return seen;
 }
 
+/// Rest corners of triangle 0: (0,0,0) (1,0,0) (0,1,0).
+const std::vector<Vector3> unitTriangle{ Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0) };
+
+/// A split of `parent` (corners 0, 1, 2 of unitTriangle) into two pieces,
+/// the second `second`, at the midpoint m of its second side: (v0, v1, m)
+/// and (v0, m, v2).
+CollisionTriangleSplit midpointSplit(int parent, int second)
+{
+  CollisionTriangleSplit split;
+  split.parent = parent;
+  split.parentCorners = { { 0, 1, 2 } };
+  split.children = { parent, second };
+  split.childCorners = { { { Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0.5, 0.5) } },
+    { { Vector3(1, 0, 0), Vector3(0, 0.5, 0.5), Vector3(0, 0, 1) } } };
+  return split;
+}
+
 } // namespace
 
 TEST(CollisionSplitHistory, AnUnsplitTriangleResolvesToItself)
@@ -109,17 +126,8 @@ TEST(CollisionSplitHistory, AnUnsplitTriangleResolvesToItself)
 
 TEST(CollisionSplitHistory, APointGoesToThePieceItLiesInWithFormula52)
 {
-  // Triangle 0 (0,0,0) (1,0,0) (0,1,0) split at the midpoint m of its
-  // second side into (v0, v1, m) and (v0, m, v2).
-  const std::vector<Vector3> rest{ Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0) };
-  CollisionTriangleSplit split;
-  split.parent = 0;
-  split.parentCorners = { { 0, 1, 2 } };
-  split.children = { 0, 1 };
-  split.childCorners = { { { Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0.5, 0.5) } },
-    { { Vector3(1, 0, 0), Vector3(0, 0.5, 0.5), Vector3(0, 0, 1) } } };
   CollisionSplitHistory history(1);
-  history.recordSplit(split, rest);
+  history.recordSplit(midpointSplit(0, 1), unitTriangle);
   EXPECT_FALSE(history.isCurrent(0));
   ASSERT_EQ(history.nodeCount(), 3u);
   // (0.6, 0.3, 0.1) lies below the median from v0 (b > c): the first piece.
@@ -138,21 +146,14 @@ TEST(CollisionSplitHistory, APointGoesToThePieceItLiesInWithFormula52)
 
 TEST(CollisionSplitHistory, ABadSplitIsRefusedAndChangesNothing)
 {
-  const std::vector<Vector3> rest{ Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0) };
-  CollisionTriangleSplit split;
-  split.parent = 4;
-  split.parentCorners = { { 0, 1, 2 } };
-  split.children = { 4, 9 };
-  split.childCorners.resize(2);
   CollisionSplitHistory history(2);
-  EXPECT_THROW(history.recordSplit(split, rest), InvalidInputError);
-  split.parent = 1;
-  split.children = { 1, 9 };
+  EXPECT_THROW(history.recordSplit(midpointSplit(4, 9), unitTriangle), InvalidInputError);
+  const CollisionTriangleSplit split = midpointSplit(1, 9);
   CollisionCutResult cut;
   cut.splits = { split };
   try
   {
-    history.recordCut(cut, rest);
+    history.recordCut(cut, unitTriangle);
     ADD_FAILURE() << "a piece past the triangles known was accepted";
   }
   catch (const InvalidInputError& e)
