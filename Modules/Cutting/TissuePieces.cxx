@@ -11,8 +11,6 @@
 #include "UnionFind.h"
 
 #include <algorithm>
-#include <map>
-#include <unordered_map>
 
 namespace thintissue
 {
@@ -25,18 +23,27 @@ double triangleArea(const std::vector<Vector3>& x, const Triangle& t)
   return 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
 }
 
-/// Re-indexes the used entries of a list: old index -> new, in first-use
-/// order.
+/// Re-indexes the used entries of a list of `count`: old index -> new, in
+/// first-use order. A dense table (a piece's extraction already walks the
+/// whole visual mesh; a hash node per vertex had cost thousands of
+/// allocations a bite).
 struct Renumbering
 {
-  std::unordered_map<int, int> newOf;
+  explicit Renumbering(std::size_t count)
+    : newOf(count, -1)
+  {
+  }
+  std::vector<int> newOf;
   std::vector<int> oldOf;
   int operator()(int old)
   {
-    const auto [it, added] = newOf.emplace(old, static_cast<int>(oldOf.size()));
-    if (added)
+    int& index = newOf[static_cast<std::size_t>(old)];
+    if (index < 0)
+    {
+      index = static_cast<int>(oldOf.size());
       oldOf.push_back(old);
-    return it->second;
+    }
+    return index;
   }
 };
 
@@ -165,14 +172,20 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
         if (other > t && Active[other])
           pieces.unite(t, other);
   }
-  std::map<int, std::vector<int>> members;
-  std::map<int, double> area;
-  std::map<int, bool> attached;
+  // Per piece, by its root (ascending): its triangles, its area, and
+  // whether a fixed node holds it (dense tables: a map entry per triangle
+  // and node had cost more than the search).
+  std::vector<std::vector<int>> members(triangles.size());
+  std::vector<double> area(triangles.size(), 0.0);
+  std::vector<char> attached(triangles.size(), 0);
+  std::vector<int> roots;
   for (int t = 0; t < count; ++t)
   {
     if (!Active[t])
       continue;
     const int root = pieces.find(t);
+    if (members[root].empty())
+      roots.push_back(root);
     members[root].push_back(t);
     area[root] += triangleArea(Collision.restPositions(), triangles[t]);
     for (int h : Branches.hexahedraOf(t))
@@ -180,20 +193,22 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
         attached[root] =
           attached[root] || (Solver ? Solver->isFixed(node) : Simulation.isFixed(node));
   }
-  SinglePiece = members.size() < 2;
+  std::sort(roots.begin(), roots.end());
+  SinglePiece = roots.size() < 2;
   if (SinglePiece)
     return;
   // With nothing attached anywhere, the largest piece is the tissue.
-  int largest = members.begin()->first;
+  int largest = roots.front();
   bool anyAttached = false;
-  for (const auto& [root, list] : members)
+  for (int root : roots)
   {
     anyAttached = anyAttached || attached[root];
     largest = area[root] > area[largest] ? root : largest;
   }
-  std::size_t remaining = members.size();
-  for (const auto& [root, list] : members)
+  std::size_t remaining = roots.size();
+  for (int root : roots)
   {
+    const std::vector<int>& list = members[root];
     const bool free = anyAttached ? !attached[root] : root != largest;
     if (!free)
       continue;
@@ -213,7 +228,7 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
 {
   TissuePiece piece;
   const std::vector<Vector3>& nodeCurrent = Solver ? Solver->positions() : Simulation.nodes;
-  Renumbering collisionVertices;
+  Renumbering collisionVertices(Collision.vertexCount());
   piece.collision.name = Collision.name() + " piece";
   for (int t : triangles)
   {
@@ -238,7 +253,7 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
       hexahedra.end(), Branches.hexahedraOf(t).begin(), Branches.hexahedraOf(t).end());
   std::sort(hexahedra.begin(), hexahedra.end());
   hexahedra.erase(std::unique(hexahedra.begin(), hexahedra.end()), hexahedra.end());
-  Renumbering nodes;
+  Renumbering nodes(Simulation.nodeCount());
   piece.simulation.name = Simulation.name + " piece";
   for (int h : hexahedra)
   {
@@ -258,7 +273,7 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
   std::vector<char> inPiece(Collision.triangleCount(), 0);
   for (int t : triangles)
     inPiece[t] = 1;
-  Renumbering visualVertices;
+  Renumbering visualVertices(Visual.mesh().vertexCount());
   piece.visual.name = Visual.mesh().name + " piece";
   for (std::size_t t = 0; t < Visual.mesh().triangleCount(); ++t)
   {

@@ -115,6 +115,7 @@ void WrinkleGenerator::refreshInfluence(const TissueCutter& cutter,
     include(static_cast<std::size_t>(t));
   }
   std::vector<Triangle> shown;
+  shown.reserve(visual.triangleCount());
   for (std::size_t t = 0; t < visual.triangleCount(); ++t)
   {
     const bool wasShown = t < ShownTriangles.size() && ShownTriangles[t];

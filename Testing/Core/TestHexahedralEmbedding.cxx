@@ -1,4 +1,5 @@
 #include "HexahedralEmbedding.h"
+#include "MeshQueries.h"
 #include "ThinTissueError.h"
 #include "TrilinearCoordinates.h"
 
@@ -6,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -212,6 +214,51 @@ TEST(HexahedralEmbedding, OutsidePointsGoToTheNearestHexahedron)
     ++checked;
   }
   EXPECT_GT(checked, 500u);
+}
+
+// distanceToHexahedron skips the faces whose bounding boxes lie farther
+// than the best triangle so far: the distance is still the least over all
+// 24 boundary triangles (each face joined to its centre), bit for bit.
+TEST(HexahedralEmbedding, BoundaryDistanceIsTheLeastOverAllFaceTriangles)
+{
+  constexpr int faces[6][4] = {
+    { 0, 3, 7, 4 }, { 1, 2, 6, 5 }, { 0, 1, 5, 4 }, { 3, 2, 6, 7 }, { 0, 1, 2, 3 }, { 4, 5, 6, 7 }
+  };
+  const HexahedralMesh mesh = distortedGrid(12);
+  std::mt19937 random(13);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t outside = 0;
+  for (std::size_t h = 0; h < mesh.hexahedronCount(); ++h)
+  {
+    const HexahedronCorners c = hexahedronCorners(mesh, h);
+    Vector3 centre = Vector3::Zero();
+    for (const Vector3& corner : c)
+      centre += corner / 8.0;
+    for (int i = 0; i < 200; ++i)
+    {
+      // Around the cell, and on its corners and edges (ties between faces).
+      Vector3 p = centre + Vector3(1.2 * unit(random), 2.4 * unit(random), 0.6 * unit(random));
+      if (i % 10 == 0)
+        p = c[i % 8];
+      if (i % 10 == 5)
+        p = 0.5 * (c[i % 8] + c[(i + 1) % 8]) + Vector3(0.0, 0.0, 0.3);
+      double expected = std::numeric_limits<double>::infinity();
+      for (const auto& face : faces)
+      {
+        const Vector3 middle = 0.25 * (c[face[0]] + c[face[1]] + c[face[2]] + c[face[3]]);
+        for (int e = 0; e < 4; ++e)
+          expected = std::min(expected,
+            (closestPointOnTriangle(p, c[face[e]], c[face[(e + 1) % 4]], middle) - p)
+              .squaredNorm());
+      }
+      const double distance = distanceToHexahedron(c, p);
+      if (distance == 0.0)
+        continue;
+      ++outside;
+      ASSERT_EQ(distance, std::sqrt(expected)) << "hexahedron " << h << ", point " << i;
+    }
+  }
+  EXPECT_GT(outside, 2000u);
 }
 
 TEST(HexahedralEmbedding, FarPointsAreClampedToTheNearestHexahedron)
