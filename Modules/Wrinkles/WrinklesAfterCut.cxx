@@ -27,6 +27,14 @@ int nearestTriangle(const TissueCutter& cutter, int h, const Vector3& point)
     for (const int t : cutter.branches().trianglesOf(copy))
     {
       const Triangle& c = triangles[t];
+      // Its bounding box bounds its distance from below: a triangle whose
+      // box lies farther (beyond a round-off margin) cannot be nearer.
+      const Vector3 low = rest[c[0]].cwiseMin(rest[c[1]]).cwiseMin(rest[c[2]]);
+      const Vector3 high = rest[c[0]].cwiseMax(rest[c[1]]).cwiseMax(rest[c[2]]);
+      const double lower =
+        (low - point).cwiseMax(0.0).squaredNorm() + (point - high).cwiseMax(0.0).squaredNorm();
+      if (lower > nearest * (1.0 + 1e-9))
+        continue;
       const double d =
         (closestPointOnTriangle(point, rest[c[0]], rest[c[1]], rest[c[2]]) - point).squaredNorm();
       if (d < nearest)
