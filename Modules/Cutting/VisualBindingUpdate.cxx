@@ -572,7 +572,11 @@ void CuttableVisualMesh::rebindPiece(RegionCut& region,
       rebindable[local] = 0;
       const int v = region.vertices[local];
       VisualVertexBinding& b = Bindings[v];
-      if (leftToHistory(region, b.parameters, region.planar[local], piece))
+      // Its point in the plane must be the binding's own (no bulge, no
+      // fold repair moved it): the history resolves from the parameters.
+      const Vector2& planar = region.planar[local];
+      if (planar == planarPoint(region.frame, b.parameters) &&
+          leftToHistory(region, b.parameters, planar, piece))
       {
         region.leftToHistory.push_back({ { v, child } });
         continue;
@@ -586,16 +590,15 @@ void CuttableVisualMesh::rebindPiece(RegionCut& region,
   }
 }
 
-// The history resolves a vertex from its own parameters: in the plane
-// point they give (no bulge, no fold repair moved it), to the piece whose
-// smallest barycentric coordinate is largest there, with the same map.
+// The history resolves a vertex from its own parameters, at the plane
+// point they give, to the piece whose smallest barycentric coordinate is
+// largest there, with the same map.
 bool CuttableVisualMesh::leftToHistory(const RegionCut& region,
   const Vector3& parameters,
   const Vector2& planar,
   int piece) const
 {
   return Settings.lazyBinding && region.historyPieceCount > 0 && parameters.minCoeff() > 0.0 &&
-         planar == planarPoint(region.frame, parameters) &&
          pieceContaining(region.historyPieces.data(), region.historyPieceCount, planar) == piece;
 }
 

@@ -502,10 +502,12 @@ private:
     int child,
     const Eigen::Matrix3d& inverse,
     CutBuffers& buffers);
-  /// Whether a vertex with parent parameters `parameters`, at `planar` in
-  /// the region's plane and going to piece `piece`, may be left to the
-  /// split history (VisualCutSettings::lazyBinding): it resolves to what
-  /// formula 5-2 gives here, bit for bit.
+  /// Whether a vertex with parent parameters `parameters`, going to piece
+  /// `piece`, may be left to the split history
+  /// (VisualCutSettings::lazyBinding): it resolves to what formula 5-2
+  /// gives here, bit for bit. `planar` must be the parameters' own point in
+  /// the region's plane (planarPoint): the caller checks that no bulge or
+  /// fold repair moved the vertex.
   bool leftToHistory(const RegionCut& region,
     const Vector3& parameters,
     const Vector2& planar,

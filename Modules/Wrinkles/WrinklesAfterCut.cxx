@@ -29,11 +29,10 @@ int nearestTriangle(const TissueCutter& cutter, int h, const Vector3& point)
       const Triangle& c = triangles[t];
       // Its bounding box bounds its distance from below: a triangle whose
       // box lies farther (beyond a round-off margin) cannot be nearer.
-      const Vector3 low = rest[c[0]].cwiseMin(rest[c[1]]).cwiseMin(rest[c[2]]);
-      const Vector3 high = rest[c[0]].cwiseMax(rest[c[1]]).cwiseMax(rest[c[2]]);
-      const double lower =
-        (low - point).cwiseMax(0.0).squaredNorm() + (point - high).cwiseMax(0.0).squaredNorm();
-      if (lower > nearest * (1.0 + 1e-9))
+      BoundingBox box(rest[c[0]], rest[c[0]]);
+      box.extend(rest[c[1]]);
+      box.extend(rest[c[2]]);
+      if (box.squaredExteriorDistance(point) > nearest * (1.0 + 1e-9))
         continue;
       const double d =
         (closestPointOnTriangle(point, rest[c[0]], rest[c[1]], rest[c[2]]) - point).squaredNorm();
