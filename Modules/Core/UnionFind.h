@@ -14,9 +14,13 @@ namespace thintissue
 class UnionFind
 {
 public:
-  explicit UnionFind(std::size_t count)
-    : Parent(count)
+  UnionFind() = default;
+  explicit UnionFind(std::size_t count) { reset(count); }
+  /// Every index of [0, count) in a set of its own; keeps the storage, so a
+  /// loop over many small ranges allocates once.
+  void reset(std::size_t count)
   {
+    Parent.resize(count);
     std::iota(Parent.begin(), Parent.end(), 0);
   }
   int find(int i)

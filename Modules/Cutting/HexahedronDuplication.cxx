@@ -3,6 +3,7 @@
 #include "UnionFind.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 namespace thintissue
@@ -43,19 +44,6 @@ bool triangleMeetsBox(const Vector3& a, const Vector3& b, const Vector3& c, cons
   return true;
 }
 
-bool sortedIntersect(const std::vector<int>& x, const std::vector<int>& y)
-{
-  auto i = x.begin();
-  auto j = y.begin();
-  while (i != x.end() && j != y.end())
-  {
-    if (*i == *j)
-      return true;
-    (*i < *j) ? ++i : ++j;
-  }
-  return false;
-}
-
 void insertSorted(std::vector<int>& list, int value)
 {
   const auto at = std::lower_bound(list.begin(), list.end(), value);
@@ -63,6 +51,14 @@ void insertSorted(std::vector<int>& list, int value)
   {
     list.insert(at, value);
   }
+}
+
+/// An undirected edge by its two corners.
+std::uint64_t cornerPairKey(int a, int b)
+{
+  const auto low = static_cast<std::uint32_t>(std::min(a, b));
+  const auto high = static_cast<std::uint32_t>(std::max(a, b));
+  return (std::uint64_t{ low } << 32) | high;
 }
 
 void eraseValue(std::vector<int>& list, int value)
@@ -116,7 +112,10 @@ bool HexahedralBranches::meets(const CuttableCollisionMesh& collision, int trian
   box.max().array() += grow;
   BoundingBox triangleBox(x[tri[0]]);
   triangleBox.extend(x[tri[1]]).extend(x[tri[2]]);
-  return box.intersects(triangleBox) && triangleMeetsBox(x[tri[0]], x[tri[1]], x[tri[2]], box);
+  // A triangle inside the box meets it (most pieces of a cut in a coarse
+  // hexahedron): no separating axis to look for.
+  return box.contains(triangleBox) ||
+         (box.intersects(triangleBox) && triangleMeetsBox(x[tri[0]], x[tri[1]], x[tri[2]], box));
 }
 
 int HexahedralBranches::copyHolding(int h, const std::vector<int>& triangles) const
@@ -184,48 +183,55 @@ void HexahedralBranches::splitBranches(const CuttableCollisionMesh& collision,
   HexahedralMesh& mesh,
   HexahedronDuplicationResult& result)
 {
-  const std::vector<int>& triangles = HexTriangles[h];
-  const int n = static_cast<int>(triangles.size());
-  UnionFind groups(n);
-  int roots = n;
+  // Branches: the hexahedron's triangles joined through shared collision
+  // edges. The collision adjacency's edges are its triangles' corner pairs,
+  // so the triangles' edges sorted by their corners bring the triangles of
+  // an edge side by side (no lookup per edge).
+  Scratch& work = Work;
+  work.triangles.assign(HexTriangles[h].begin(), HexTriangles[h].end());
+  const int n = static_cast<int>(work.triangles.size());
+  work.edges.clear();
   for (int i = 0; i < n; ++i)
   {
-    const Triangle& tri = collision.triangles()[triangles[i]];
+    const Triangle& tri = collision.triangles()[work.triangles[i]];
     for (int k = 0; k < 3; ++k)
-    {
-      for (int other : collision.trianglesOfEdge(tri[k], tri[(k + 1) % 3]))
-      {
-        const auto at = std::lower_bound(triangles.begin(), triangles.end(), other);
-        if (other >= 0 && at != triangles.end() && *at == other)
-          roots -= groups.unite(i, static_cast<int>(at - triangles.begin())) ? 1 : 0;
-      }
-    }
+      work.edges.emplace_back(cornerPairKey(tri[k], tri[(k + 1) % 3]), i);
+  }
+  std::sort(work.edges.begin(), work.edges.end());
+  work.groups.reset(n);
+  int roots = n;
+  for (std::size_t j = 1; j < work.edges.size(); ++j)
+  {
+    if (work.edges[j].first == work.edges[j - 1].first)
+      roots -= work.groups.unite(work.edges[j - 1].second, work.edges[j].second) ? 1 : 0;
   }
   // Most touched hexahedra keep one branch: nothing to copy, nothing made.
   if (roots < 2)
     return;
-  std::vector<std::vector<int>> branches(n);
+  // The largest branch stays (ties: the one with the lowest triangle, the
+  // root of a set being its lowest index).
+  work.rootOf.resize(n);
+  work.size.assign(n, 0);
+  for (int i = 0; i < n; ++i)
+    ++work.size[work.rootOf[i] = work.groups.find(i)];
+  work.roots.clear();
   for (int i = 0; i < n; ++i)
   {
-    branches[groups.find(i)].push_back(triangles[i]);
+    if (work.size[i] > 0)
+      work.roots.push_back(i);
   }
-  branches.erase(
-    std::remove_if(
-      branches.begin(), branches.end(), [](const std::vector<int>& b) { return b.empty(); }),
-    branches.end());
-  // The largest branch stays (ties: the one with the lowest triangle).
-  std::stable_sort(branches.begin(),
-    branches.end(),
-    [](const std::vector<int>& x, const std::vector<int>& y) { return x.size() > y.size(); });
-  HexTriangles[h] = branches[0];
-  for (std::size_t b = 1; b < branches.size(); ++b)
+  std::stable_sort(work.roots.begin(),
+    work.roots.end(),
+    [&work](int x, int y) { return work.size[x] > work.size[y]; });
+  branchMembers(work.roots[0], HexTriangles[h]);
+  for (std::size_t b = 1; b < work.roots.size(); ++b)
   {
     const int copy = static_cast<int>(mesh.hexahedra.size());
     mesh.hexahedra.push_back(mesh.hexahedra[h]);
-    HexTriangles.push_back(branches[b]);
+    branchMembers(work.roots[b], HexTriangles.emplace_back());
     Original.push_back(Original[h]);
     Copies[Original[h]].push_back(copy);
-    for (int t : branches[b])
+    for (int t : HexTriangles[copy])
     {
       std::replace(TriangleHexes[t].begin(), TriangleHexes[t].end(), h, copy);
     }
@@ -237,23 +243,57 @@ void HexahedralBranches::splitBranches(const CuttableCollisionMesh& collision,
   }
 }
 
+// The triangles of the branch with this root (splitBranches' scratch), in
+// ascending order.
+void HexahedralBranches::branchMembers(int root, std::vector<int>& members)
+{
+  members.clear();
+  members.reserve(static_cast<std::size_t>(Work.size[root]));
+  for (std::size_t i = 0; i < Work.triangles.size(); ++i)
+  {
+    if (Work.rootOf[i] == root)
+      members.push_back(Work.triangles[i]);
+  }
+}
+
 void HexahedralBranches::regroupNode(int node,
   HexahedralMesh& mesh,
   HexahedronDuplicationResult& result)
 {
-  const std::vector<int> around = NodeHexes[node];
+  Scratch& work = Work;
+  work.around.assign(NodeHexes[node].begin(), NodeHexes[node].end());
+  const std::vector<int>& around = work.around;
   const int n = static_cast<int>(around.size());
-  UnionFind groups(n);
+  UnionFind& groups = work.groups;
+  groups.reset(n);
+  // Hexahedra that share a collision triangle join: each triangle remembers
+  // the first hexahedron around the node that holds it (stamped per node,
+  // so nothing is cleared between nodes).
+  if (work.triangleStamp.size() < TriangleHexes.size())
+  {
+    work.triangleStamp.resize(TriangleHexes.size(), 0);
+    work.firstHolder.resize(TriangleHexes.size(), -1);
+  }
+  if (++work.stamp == std::numeric_limits<int>::max())
+  {
+    std::fill(work.triangleStamp.begin(), work.triangleStamp.end(), 0);
+    work.stamp = 1;
+  }
   int firstHolding = -1;
   for (int i = 0; i < n; ++i)
   {
     if (HexTriangles[around[i]].empty())
       continue;
     firstHolding = firstHolding < 0 ? i : firstHolding;
-    for (int j = i + 1; j < n; ++j)
+    for (int t : HexTriangles[around[i]])
     {
-      if (sortedIntersect(HexTriangles[around[i]], HexTriangles[around[j]]))
-        groups.unite(i, j);
+      if (work.triangleStamp[t] == work.stamp)
+        groups.unite(work.firstHolder[t], i);
+      else
+      {
+        work.triangleStamp[t] = work.stamp;
+        work.firstHolder[t] = i;
+      }
     }
   }
   // Hexahedra without collision surface stay with the first group.
@@ -262,30 +302,31 @@ void HexahedralBranches::regroupNode(int node,
     if (HexTriangles[around[i]].empty() && firstHolding >= 0)
       groups.unite(i, firstHolding);
   }
-  std::vector<int> groupSize(n, 0);
+  work.size.assign(n, 0);
   for (int i = 0; i < n; ++i)
-    ++groupSize[groups.find(i)];
+    ++work.size[groups.find(i)];
   const int keeper =
-    static_cast<int>(std::max_element(groupSize.begin(), groupSize.end()) - groupSize.begin());
-  std::vector<int> nodeOfGroup(n, -1);
+    static_cast<int>(std::max_element(work.size.begin(), work.size.end()) - work.size.begin());
+  work.nodeOfGroup.assign(n, -1);
   for (int i = 0; i < n; ++i)
   {
     const int group = groups.find(i);
     if (group == keeper)
       continue;
-    if (nodeOfGroup[group] < 0)
+    int& copy = work.nodeOfGroup[group];
+    if (copy < 0)
     {
-      nodeOfGroup[group] = static_cast<int>(mesh.nodes.size());
+      copy = static_cast<int>(mesh.nodes.size());
       mesh.nodes.push_back(mesh.nodes[node]);
       if (!mesh.fixedNodes.empty())
         mesh.fixedNodes.push_back(mesh.fixedNodes[node]);
       NodeHexes.emplace_back();
-      result.newNodes.push_back({ nodeOfGroup[group], node });
+      result.newNodes.push_back({ copy, node });
     }
     const int h = around[i];
-    std::replace(mesh.hexahedra[h].begin(), mesh.hexahedra[h].end(), node, nodeOfGroup[group]);
+    std::replace(mesh.hexahedra[h].begin(), mesh.hexahedra[h].end(), node, copy);
     eraseValue(NodeHexes[node], h);
-    NodeHexes[nodeOfGroup[group]].push_back(h);
+    NodeHexes[copy].push_back(h);
     result.renodedHexahedra.push_back(h);
   }
 }

@@ -18,6 +18,10 @@
 #include "CollisionMeshCut.h"
 #include "HexahedralMesh.h"
 #include "ThinTissueCuttingModule.h"
+#include "UnionFind.h"
+
+#include <cstdint>
+#include <utility>
 
 #include <vector>
 
@@ -80,6 +84,7 @@ private:
     int h,
     HexahedralMesh& mesh,
     HexahedronDuplicationResult& result);
+  void branchMembers(int root, std::vector<int>& members);
   void regroupNode(int node, HexahedralMesh& mesh, HexahedronDuplicationResult& result);
   bool meets(const CuttableCollisionMesh& collision, int triangle, int h) const;
 
@@ -89,6 +94,24 @@ private:
   std::vector<std::vector<int>> NodeHexes;
   std::vector<int> Original;
   std::vector<std::vector<int>> Copies; ///< per original
+
+  /// Scratch of the branch analysis, kept from cut to cut: a cut allocates
+  /// only what it adds to the mesh.
+  struct Scratch
+  {
+    std::vector<std::pair<std::uint64_t, int>> edges; ///< (edge, local triangle)
+    std::vector<int> triangles;                       ///< of the hexahedron analysed
+    std::vector<int> rootOf;                          ///< per local triangle or hexahedron
+    std::vector<int> size;                            ///< per root
+    std::vector<int> roots;                           ///< by size, ties by lowest index
+    std::vector<int> around;                          ///< hexahedra around a node
+    std::vector<int> nodeOfGroup;
+    std::vector<int> triangleStamp; ///< per collision triangle: the node visit
+    std::vector<int> firstHolder;   ///< ... and the first hexahedron around it
+    int stamp = 0;
+    UnionFind groups;
+  };
+  Scratch Work;
 };
 
 } // namespace thintissue
