@@ -41,6 +41,7 @@ CutRimContourReport TissueCutter::contour(const Vector3& centre, double radius, 
                             std::to_string(radius) + ", strength " + std::to_string(strength) +
                             ")");
   }
+  requireNoVisualPending("contouring");
   const auto start = std::chrono::steady_clock::now();
   CutRimContourReport report;
   if (!HasVisual || VisualFailed)

@@ -156,6 +156,7 @@ TissueCutter::TissueCutter(const TriangleMesh& collision,
 
 void TissueCutter::setSettings(const TissueCutterSettings& settings)
 {
+  requireNoVisualPending("new settings");
   checkCutterSettings(Collision.name(), settings);
   if (settings.radiusArrayName != Settings.radiusArrayName)
   {
@@ -535,22 +536,61 @@ void TissueCutter::followLeftToHistory(const TissueCutReport& report, std::vecto
 
 TissueCutReport TissueCutter::cut(const Blade& blade)
 {
+  TissueCutReport report = cutCollision(blade);
+  finishVisualCut(report);
+  return report;
+}
+
+TissueCutReport TissueCutter::cutCollision(const Blade& blade)
+{
+  requireNoVisualPending("cut");
   const auto start = Clock::now();
   TissueCutReport report;
   const std::vector<Vector3> current = currentCollisionPositions();
   report.collision = Collision.cut(blade, current, Settings.collision);
   report.collisionMilliseconds = millisecondsSince(start);
-  if (report.collision.changed() && followCollisionCut(report))
+  if (report.collision.changed())
   {
+    followCollisionCut(report);
     const auto removalStart = Clock::now();
     handleFreePieces(report);
     report.removalMilliseconds = millisecondsSince(removalStart);
+    VisualPending = HasVisual;
   }
   report.totalMilliseconds = millisecondsSince(start);
   return report;
 }
 
-bool TissueCutter::followCollisionCut(TissueCutReport& report)
+void TissueCutter::finishVisualCut(TissueCutReport& report)
+{
+  if (!VisualPending)
+    return;
+  VisualPending = false;
+  const auto start = Clock::now();
+  // A removal that changed no collision triangle has no visual cut to
+  // follow, only its pieces.
+  const bool cut = report.collision.changed() && !VisualFailed;
+  if (!cut || followWithVisualCut(report))
+  {
+    const auto removalStart = Clock::now();
+    for (const PendingPieceVisual& pending : PendingPieces)
+      pieceVisual(pending.triangles, pending.nodeCurrent, report.handedOver[pending.piece]);
+    report.removalMilliseconds += millisecondsSince(removalStart);
+  }
+  PendingPieces.clear();
+  report.totalMilliseconds += millisecondsSince(start);
+}
+
+void TissueCutter::requireNoVisualPending(const char* what) const
+{
+  if (VisualPending)
+  {
+    throw InvalidInputError("tissue cutter for '" + Collision.name() + "': " + what +
+                            " while the last cut's visual half is pending (finishVisualCut)");
+  }
+}
+
+void TissueCutter::followCollisionCut(TissueCutReport& report)
 {
   // Pieces of a removed piece's triangles stay removed.
   Active.resize(Collision.triangleCount(), 1);
@@ -564,8 +604,10 @@ bool TissueCutter::followCollisionCut(TissueCutReport& report)
   const auto embeddingStart = Clock::now();
   report.reembeddedCollisionVertices = reembedCollision(report);
   report.embeddingMilliseconds = millisecondsSince(embeddingStart);
-  if (!HasVisual || VisualFailed)
-    return true;
+}
+
+bool TissueCutter::followWithVisualCut(TissueCutReport& report)
+{
   const auto visualStart = Clock::now();
   try
   {
@@ -610,6 +652,7 @@ std::vector<int> TissueCutter::activeTrianglesWithin(const Vector3& centre, doub
 
 TissueCutReport TissueCutter::removeTriangles(const std::vector<int>& triangles)
 {
+  requireNoVisualPending("removal");
   const auto start = Clock::now();
   const auto count = static_cast<int>(Collision.triangleCount());
   std::vector<int> removed;
@@ -647,19 +690,22 @@ TissueCutReport TissueCutter::removeTriangles(const std::vector<int>& triangles)
   border.erase(std::unique(border.begin(), border.end()), border.end());
   report.collision = Collision.cutAlongEdges(border);
   report.collisionMilliseconds = millisecondsSince(start);
-  if (!report.collision.changed() || followCollisionCut(report))
-  {
-    const auto removalStart = Clock::now();
-    if (Settings.freePieces == FreePieceHandling::HandOver)
-      report.handedOver.push_back(extractPiece(removed));
-    removePiece(removed, report);
-    ++report.removedPieces;
-    // What the removal left apart from the rest (a bridge shaved through).
-    if (report.collision.changed())
-      handleFreePieces(report);
-    report.removalMilliseconds = millisecondsSince(removalStart);
-  }
+  if (report.collision.changed())
+    followCollisionCut(report);
+  const auto removalStart = Clock::now();
+  if (Settings.freePieces == FreePieceHandling::HandOver)
+    handOver(removed, report);
+  removePiece(removed, report);
+  ++report.removedPieces;
+  // What the removal left apart from the rest (a bridge shaved through).
+  if (report.collision.changed())
+    handleFreePieces(report);
+  report.removalMilliseconds = millisecondsSince(removalStart);
+  // The visual half at once (the opening, its cut surface, the pieces'
+  // visual parts); a piece with no new collision vertex needs only those.
+  VisualPending = HasVisual;
   report.totalMilliseconds = millisecondsSince(start);
+  finishVisualCut(report);
   return report;
 }
 

@@ -138,6 +138,21 @@ public:
   /// changes nothing. Throws InvalidInputError, with the tissue untouched,
   /// on a bad blade (empty, NaN, degenerate).
   TissueCutReport cut(const Blade& blade);
+  /// cut() in two halves, for a caller that overlaps the visual half with
+  /// other work (the training scene runs it beside the physics step, which
+  /// reads only the collision side). cutCollision cuts the collision and
+  /// simulation meshes, updates the solver, re-embeds the collision mesh
+  /// and removes the pieces that came free (their collision and simulation
+  /// parts); finishVisualCut then cuts the visual mesh, re-embeds it and
+  /// gives the handed-over pieces their visual parts. Between the two only
+  /// the collision side may be read (no cut, removal, contouring, settings,
+  /// nor any read of the visual mesh); cut() is the two in a row, with the
+  /// same result. cutCollision throws InvalidInputError while a visual
+  /// half is pending.
+  TissueCutReport cutCollision(const Blade& blade);
+  void finishVisualCut(TissueCutReport& report);
+  /// Whether cutCollision left a visual half for finishVisualCut.
+  bool visualCutPending() const { return VisualPending; }
   /// Piecewise removal (6.4.3, a running shaver): the given collision
   /// triangles (inactive ones ignored) go, with the visual triangles bound
   /// to them; the tissue opens along their border, whose cut surface closes
@@ -209,9 +224,14 @@ public:
   CutSurfaceRoughness cutRimRoughness() const;
 
 private:
-  /// The simulation, embedding and visual stages of a collision cut in
-  /// `report`; false when the visual cut failed (visualError set).
-  bool followCollisionCut(TissueCutReport& report);
+  /// The simulation and collision embedding stages of a collision cut in
+  /// `report`.
+  void followCollisionCut(TissueCutReport& report);
+  /// Its visual stages; false when the visual cut failed (visualError set).
+  bool followWithVisualCut(TissueCutReport& report);
+  /// Refuses (InvalidInputError naming `what`) while a visual half is
+  /// pending.
+  void requireNoVisualPending(const char* what) const;
   void updateSolver(const HexahedronDuplicationResult& duplication);
   std::vector<int> reembedCollision(const TissueCutReport& report);
   std::vector<int> reembedVisual(const TissueCutReport& report);
@@ -230,7 +250,13 @@ private:
   void handleFreePieces(TissueCutReport& report);
   bool cutMaySeparate(const TissueCutReport& report);
   bool activeMeshIsOnePiece() const;
-  TissuePiece extractPiece(const std::vector<int>& triangles) const;
+  /// A free piece handed over (report.handedOver): its collision and
+  /// simulation parts; its visual part is noted for finishVisualCut
+  /// (pieceVisual).
+  void handOver(const std::vector<int>& triangles, TissueCutReport& report);
+  void pieceVisual(const std::vector<int>& triangles,
+    const std::vector<Vector3>& nodeCurrent,
+    TissuePiece& piece) const;
   void removePiece(const std::vector<int>& triangles, TissueCutReport& report);
 
   TissueCutterSettings Settings;
@@ -242,6 +268,17 @@ private:
   CorotationalHexFem* Solver = nullptr;
   bool HasVisual = false;
   bool VisualFailed = false;
+  /// Between cutCollision and finishVisualCut: the visual half is due, and
+  /// the handed-over pieces whose visual parts it makes (report.handedOver
+  /// index, collision triangles, node positions when the piece came free).
+  bool VisualPending = false;
+  struct PendingPieceVisual
+  {
+    std::size_t piece = 0;
+    std::vector<int> triangles;
+    std::vector<Vector3> nodeCurrent;
+  };
+  std::vector<PendingPieceVisual> PendingPieces;
   CuttableVisualMesh Visual;
   HexahedralEmbedding VisualEmbedding;
   /// Per original hexahedron: the visual vertices embedded in it or a copy.

@@ -216,7 +216,7 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
     if (!fragment && Settings.freePieces == FreePieceHandling::Keep)
       continue;
     if (!fragment && Settings.freePieces == FreePieceHandling::HandOver)
-      report.handedOver.push_back(extractPiece(list));
+      handOver(list, report);
     removePiece(list, report);
     ++report.removedPieces;
     --remaining;
@@ -224,9 +224,9 @@ void TissueCutter::handleFreePieces(TissueCutReport& report)
   SinglePiece = remaining == 1;
 }
 
-TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
+void TissueCutter::handOver(const std::vector<int>& triangles, TissueCutReport& report)
 {
-  TissuePiece piece;
+  TissuePiece& piece = report.handedOver.emplace_back();
   const std::vector<Vector3>& nodeCurrent = Solver ? Solver->positions() : Simulation.nodes;
   Renumbering collisionVertices(Collision.vertexCount());
   piece.collision.name = Collision.name() + " piece";
@@ -268,8 +268,17 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
     piece.simulation.fixedNodes.push_back(Simulation.isFixed(n) ? 1 : 0);
     piece.nodeCurrent.push_back(nodeCurrent[n]);
   }
-  if (!HasVisual)
-    return piece;
+  if (HasVisual)
+    PendingPieces.push_back({ report.handedOver.size() - 1, triangles, nodeCurrent });
+}
+
+// The visual part of a piece handed over (handOver): the visual
+// triangles of its collision triangles' regions, placed by the node
+// positions of when it came free.
+void TissueCutter::pieceVisual(const std::vector<int>& triangles,
+  const std::vector<Vector3>& nodeCurrent,
+  TissuePiece& piece) const
+{
   std::vector<char> inPiece(Collision.triangleCount(), 0);
   for (int t : triangles)
     inPiece[t] = 1;
@@ -290,7 +299,6 @@ TissuePiece TissueCutter::extractPiece(const std::vector<int>& triangles) const
     piece.visualRest.push_back(Visual.mesh().positions[v]);
   }
   piece.visual.computeVertexNormals();
-  return piece;
 }
 
 void TissueCutter::removePiece(const std::vector<int>& triangles, TissueCutReport& report)
