@@ -266,6 +266,27 @@ OperationKind InstrumentAction::actsNow(const InstrumentCommand& command)
 InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
   const InstrumentCommand& command)
 {
+  return applyWith(cutter, command, false);
+}
+
+InstrumentActionResult InstrumentAction::applyVisualLater(TissueCutter& cutter,
+  const InstrumentCommand& command)
+{
+  return applyWith(cutter, command, true);
+}
+
+void InstrumentAction::finishCut(TissueCutter& cutter, InstrumentActionResult& result)
+{
+  if (!cutter.visualCutPending())
+    return;
+  cutter.finishVisualCut(result.report);
+  takeRemoved(result);
+}
+
+InstrumentActionResult InstrumentAction::applyWith(TissueCutter& cutter,
+  const InstrumentCommand& command,
+  bool visualLater)
+{
   InstrumentActionResult result;
   if (!HasPrevious)
   {
@@ -298,7 +319,7 @@ InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
   }
   try
   {
-    result.report = cutter.cut(blade);
+    result.report = visualLater ? cutter.cutCollision(blade) : cutter.cut(blade);
   }
   catch (const InvalidInputError& error)
   {
@@ -307,7 +328,7 @@ InstrumentActionResult InstrumentAction::apply(TissueCutter& cutter,
     result.kind = OperationKind::None;
     return result;
   }
-  return takeRemoved(result);
+  return cutter.visualCutPending() ? result : takeRemoved(result);
 }
 
 InstrumentActionResult& InstrumentAction::takeRemoved(InstrumentActionResult& result)

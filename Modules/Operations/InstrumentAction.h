@@ -140,6 +140,14 @@ public:
   /// `cutter`'s tissue as the instrument does. The first call only records
   /// the state (nothing sweeps from nowhere).
   InstrumentActionResult apply(TissueCutter& cutter, const InstrumentCommand& command);
+  /// apply() for a caller that overlaps a blade cut's visual half with
+  /// other work: a blade cut stops after TissueCutter::cutCollision, and
+  /// finishCut (before anything else reads the visual mesh or the result's
+  /// volumes) completes it. Shaving and contouring are done whole.
+  InstrumentActionResult applyVisualLater(TissueCutter& cutter, const InstrumentCommand& command);
+  /// The visual half of a cut applyVisualLater left, and its pieces'
+  /// volumes and operation count; nothing when none is pending.
+  void finishCut(TissueCutter& cutter, InstrumentActionResult& result);
 
   const SurgicalInstrumentModel& instrument() const { return Model; }
   /// Bites and strokes that changed the tissue so far.
@@ -175,6 +183,9 @@ private:
   bool jawsJustClosed(const InstrumentCommand& command) const;
   /// The removed pieces' volumes into `result`, and the operation counted.
   InstrumentActionResult& takeRemoved(InstrumentActionResult& result);
+  InstrumentActionResult applyWith(TissueCutter& cutter,
+    const InstrumentCommand& command,
+    bool visualLater);
 
   SurgicalInstrumentModel Model;
   InstrumentActionSettings Settings;

@@ -5,6 +5,7 @@
 #include "VisualCollisionBinding.h"
 
 #include <nlohmann/json.hpp>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <chrono>
@@ -34,6 +35,15 @@ PortalSettings portalOf(const PortalDescription& p)
 constexpr double JawTravelTime = 0.1;
 
 } // namespace
+
+/// A cut whose visual half is due in this step, and the task group that
+/// runs the physics beside it.
+struct TrainingScene::VisualHalf
+{
+  InstrumentActionResult done;
+  bool due = false;
+  tbb::task_group task;
+};
 
 TrainingScene::TrainingScene(const ScenarioDescription& scenario,
   HapticDevice& scope,
@@ -297,17 +307,12 @@ bool TrainingScene::step()
   const RigidPose previousScope = ScopePose;
   Tool.moveTo(InstrumentState.pose, Scenario.timeStep);
   ScopePose = ScopeState.pose;
-  const int operationsBefore = Metrics.operations;
   if (Action)
   {
     operate(InstrumentState);
   }
-  const auto physics = std::chrono::steady_clock::now();
-  const SolverResult result = Contacts.step();
-  if (Metrics.operations != operationsBefore)
-  {
-    LastCutTimes.physics = millisecondsSince(physics);
-  }
+  const SolverResult result =
+    PendingVisual && PendingVisual->due ? stepBesideVisualHalf() : Contacts.step();
   if (!result.ok)
   {
     LastError = result.message;
@@ -338,7 +343,7 @@ void TrainingScene::operate(const HapticToolState& instrument)
   command.jawOpening = JawOpening;
   command.working = pressed;
   const auto start = std::chrono::steady_clock::now();
-  const InstrumentActionResult done = Action->apply(*Cutter, command);
+  InstrumentActionResult done = Action->applyVisualLater(*Cutter, command);
   const double operation = millisecondsSince(start);
   if (done.contoured())
   {
@@ -351,24 +356,82 @@ void TrainingScene::operate(const HapticToolState& instrument)
   if (done.changed())
   {
     const auto scene = std::chrono::steady_clock::now();
-    takeCut(done);
+    // The collision side first: the physics step reads nothing else.
+    ++TopologyVersion;
+    ++Metrics.operations;
+    rebuildCollisionMesh();
+    LastCutTimes = CutStepTimes();
     LastCutTimes.scene = millisecondsSince(scene);
+    LastCutTimes.cutterOnStep = done.report.totalMilliseconds;
     LastCutTimes.operation = operation - done.report.totalMilliseconds;
-    LastCutTimes.cutter = TissueCutReport();
-    LastCutTimes.cutter.collisionMilliseconds = done.report.collisionMilliseconds;
-    LastCutTimes.cutter.simulationMilliseconds = done.report.simulationMilliseconds;
-    LastCutTimes.cutter.embeddingMilliseconds = done.report.embeddingMilliseconds;
-    LastCutTimes.cutter.visualMilliseconds = done.report.visualMilliseconds;
-    LastCutTimes.cutter.visualEmbeddingMilliseconds = done.report.visualEmbeddingMilliseconds;
-    LastCutTimes.cutter.removalMilliseconds = done.report.removalMilliseconds;
-    LastCutTimes.cutter.totalMilliseconds = done.report.totalMilliseconds;
+    if (!PendingVisual)
+      PendingVisual = std::make_unique<VisualHalf>();
+    PendingVisual->done = std::move(done);
+    PendingVisual->due = true;
   }
+}
+
+// The rest of a cut (the visual half; a shaving pass has none left), the
+// pieces' volumes and the wrinkles following the cut, on this thread, while
+// a worker runs the contacts and the FEM step: those read only the
+// collision side and the solver, the visual half only the cutter's visual
+// side and the wrinkles. (The other way round measured slower: the visual
+// half allocates, and a worker's malloc arena gives its memory back after
+// each cut.)
+SolverResult TrainingScene::stepBesideVisualHalf()
+{
+  VisualHalf& half = *PendingVisual;
+  half.due = false;
+  SolverResult result;
+  double physics = 0.0;
+  half.task.run(
+    [&]
+    {
+      const auto start = std::chrono::steady_clock::now();
+      result = Contacts.step();
+      physics = millisecondsSince(start);
+    });
+  const auto start = std::chrono::steady_clock::now();
+  try
+  {
+    Action->finishCut(*Cutter, half.done);
+    if (Wrinkles)
+      Wrinkles->followCut(*Cutter, half.done.report);
+  }
+  catch (...)
+  {
+    try
+    {
+      half.task.wait();
+    }
+    catch (...)
+    {
+      // The visual half's error is the one reported.
+    }
+    throw;
+  }
+  LastCutTimes.visualAside = millisecondsSince(start);
+  const auto wait = std::chrono::steady_clock::now();
+  half.task.wait();
+  LastCutTimes.visualWait = millisecondsSince(wait);
+  LastCutTimes.physics = physics;
+  const auto scene = std::chrono::steady_clock::now();
+  takeCut(half.done);
+  LastCutTimes.scene += millisecondsSince(scene);
+  const TissueCutReport& report = half.done.report;
+  LastCutTimes.cutter.collisionMilliseconds = report.collisionMilliseconds;
+  LastCutTimes.cutter.simulationMilliseconds = report.simulationMilliseconds;
+  LastCutTimes.cutter.embeddingMilliseconds = report.embeddingMilliseconds;
+  LastCutTimes.cutter.visualMilliseconds = report.visualMilliseconds;
+  LastCutTimes.cutter.visualEmbeddingMilliseconds = report.visualEmbeddingMilliseconds;
+  LastCutTimes.cutter.removalMilliseconds = report.removalMilliseconds;
+  LastCutTimes.cutter.totalMilliseconds = report.totalMilliseconds;
+  half.done = InstrumentActionResult();
+  return result;
 }
 
 void TrainingScene::takeCut(const InstrumentActionResult& done)
 {
-  ++TopologyVersion;
-  ++Metrics.operations;
   Metrics.removedVolume += done.removedVolume;
   for (std::size_t p = 0; p < done.report.handedOver.size(); ++p)
   {
@@ -381,11 +444,6 @@ void TrainingScene::takeCut(const InstrumentActionResult& done)
                           (centre - Scenario.targetCentre).norm() <= Scenario.targetRadius;
     (inTarget ? Metrics.removedInTarget : Metrics.removedOutsideTarget) += done.pieceVolumes[p];
   }
-  if (Wrinkles)
-  {
-    Wrinkles->followCut(*Cutter, done.report);
-  }
-  rebuildCollisionMesh();
   measureRim();
 }
 

@@ -49,11 +49,21 @@ enum class ServoTicking
 struct CutStepTimes
 {
   TissueCutReport cutter; ///< timings only (its meshes' lists cleared)
+  /// The cutter's work on the stepping thread (a blade cut's collision
+  /// half; a shaving pass whole).
+  double cutterOnStep = 0.0;
   double operation = 0.0;
   double scene = 0.0;
   /// The contacts and FEM step that follows the cut in the same physics
   /// step (the solver takes the changed hexahedra in it).
   double physics = 0.0;
+  /// The rest of the cut (a blade cut's visual half: visual cut,
+  /// re-embedding, the pieces' visual parts and volumes; the wrinkles
+  /// following the cut) on the stepping thread while a worker runs the
+  /// contacts and FEM step (`physics`), and how long the step then waited
+  /// for that.
+  double visualAside = 0.0;
+  double visualWait = 0.0;
 };
 
 class THINTISSUESCENE_EXPORT TrainingScene
@@ -138,6 +148,7 @@ private:
   void biteAtLoad();
   void measureRim();
   void takeCut(const InstrumentActionResult& done);
+  SolverResult stepBesideVisualHalf();
   void buildWrinkles(const HexahedralMesh& hexahedra, const TriangleMesh& surface);
   void buildContacts();
   void rebuildCollisionMesh();
@@ -175,6 +186,11 @@ private:
   SceneMetrics Metrics;
   CutStepTimes LastCutTimes;
   std::string LastError;
+  /// A cut whose visual half runs beside the physics step of the same step
+  /// (the contacts and the FEM read only the collision side): the same
+  /// results as in a row, whatever the timing.
+  struct VisualHalf;
+  std::unique_ptr<VisualHalf> PendingVisual;
 };
 
 } // namespace thintissue
