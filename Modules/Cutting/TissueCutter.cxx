@@ -652,6 +652,13 @@ std::vector<int> TissueCutter::activeTrianglesWithin(const Vector3& centre, doub
 
 TissueCutReport TissueCutter::removeTriangles(const std::vector<int>& triangles)
 {
+  TissueCutReport report = removeTrianglesCollision(triangles);
+  finishVisualCut(report);
+  return report;
+}
+
+TissueCutReport TissueCutter::removeTrianglesCollision(const std::vector<int>& triangles)
+{
   requireNoVisualPending("removal");
   const auto start = Clock::now();
   const auto count = static_cast<int>(Collision.triangleCount());
@@ -701,11 +708,10 @@ TissueCutReport TissueCutter::removeTriangles(const std::vector<int>& triangles)
   if (report.collision.changed())
     handleFreePieces(report);
   report.removalMilliseconds = millisecondsSince(removalStart);
-  // The visual half at once (the opening, its cut surface, the pieces'
-  // visual parts); a piece with no new collision vertex needs only those.
+  // The visual half (the opening, its cut surface, the pieces' visual
+  // parts; a piece with no new collision vertex needs only those).
   VisualPending = HasVisual;
   report.totalMilliseconds = millisecondsSince(start);
-  finishVisualCut(report);
   return report;
 }
 

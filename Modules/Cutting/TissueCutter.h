@@ -151,7 +151,8 @@ public:
   /// half is pending.
   TissueCutReport cutCollision(const Blade& blade);
   void finishVisualCut(TissueCutReport& report);
-  /// Whether cutCollision left a visual half for finishVisualCut.
+  /// Whether cutCollision or removeTrianglesCollision left a visual half
+  /// for finishVisualCut.
   bool visualCutPending() const { return VisualPending; }
   /// Piecewise removal (6.4.3, a running shaver): the given collision
   /// triangles (inactive ones ignored) go, with the visual triangles bound
@@ -162,6 +163,9 @@ public:
   /// costs what lies around the border. Throws InvalidInputError, the
   /// tissue untouched, on an index that is no triangle.
   TissueCutReport removeTriangles(const std::vector<int>& triangles);
+  /// removeTriangles' collision half (see cutCollision); finishVisualCut
+  /// completes it.
+  TissueCutReport removeTrianglesCollision(const std::vector<int>& triangles);
   /// The collision triangles still in the tissue whose centroid (rest
   /// positions) lies within `radius` of `centre`: what a shaver's window
   /// held there takes (6.4.3), for removeTriangles. Throws

@@ -306,8 +306,10 @@ InstrumentActionResult InstrumentAction::applyWith(TissueCutter& cutter,
   if (result.kind == OperationKind::Shave)
   {
     Previous = command;
-    result.report = cutter.removeTriangles(shavedTriangles(cutter, command.pose));
-    return takeRemoved(result);
+    const std::vector<int> shaved = shavedTriangles(cutter, command.pose);
+    result.report =
+      visualLater ? cutter.removeTrianglesCollision(shaved) : cutter.removeTriangles(shaved);
+    return cutter.visualCutPending() ? result : takeRemoved(result);
   }
   const Blade blade =
     result.kind == OperationKind::None ? Blade{} : bladeBetween(Previous, command);

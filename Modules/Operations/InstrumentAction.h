@@ -140,10 +140,11 @@ public:
   /// `cutter`'s tissue as the instrument does. The first call only records
   /// the state (nothing sweeps from nowhere).
   InstrumentActionResult apply(TissueCutter& cutter, const InstrumentCommand& command);
-  /// apply() for a caller that overlaps a blade cut's visual half with
-  /// other work: a blade cut stops after TissueCutter::cutCollision, and
-  /// finishCut (before anything else reads the visual mesh or the result's
-  /// volumes) completes it. Shaving and contouring are done whole.
+  /// apply() for a caller that overlaps a cut's visual half with other
+  /// work: a blade cut or a shaving pass stops after its collision half
+  /// (TissueCutter::cutCollision, removeTrianglesCollision), and finishCut
+  /// (before anything else reads the visual mesh or the result's volumes)
+  /// completes it. Contouring is done whole.
   InstrumentActionResult applyVisualLater(TissueCutter& cutter, const InstrumentCommand& command);
   /// The visual half of a cut applyVisualLater left, and its pieces'
   /// volumes and operation count; nothing when none is pending.

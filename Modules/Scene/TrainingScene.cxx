@@ -353,7 +353,9 @@ void TrainingScene::operate(const HapticToolState& instrument)
     ++Metrics.contourPasses;
     measureRim();
   }
-  if (done.changed())
+  // A removal may take a piece that was apart already without cutting
+  // anything: it changes the tissue too.
+  if (done.changed() || done.report.removedPieces > 0)
   {
     const auto scene = std::chrono::steady_clock::now();
     // The collision side first: the physics step reads nothing else.
@@ -371,7 +373,7 @@ void TrainingScene::operate(const HapticToolState& instrument)
   }
 }
 
-// The rest of a cut (the visual half; a shaving pass has none left), the
+// The rest of a cut or a shaving pass (its visual half), the
 // pieces' volumes and the wrinkles following the cut, on this thread, while
 // a worker runs the contacts and the FEM step: those read only the
 // collision side and the solver, the visual half only the cutter's visual
