@@ -418,7 +418,7 @@ SolverResult TrainingScene::stepBesideVisualHalf()
   LastCutTimes.visualWait = millisecondsSince(wait);
   LastCutTimes.physics = physics;
   const auto scene = std::chrono::steady_clock::now();
-  takeCut(half.done);
+  takeRemovedPieces(half.done);
   LastCutTimes.scene += millisecondsSince(scene);
   const TissueCutReport& report = half.done.report;
   LastCutTimes.cutter.collisionMilliseconds = report.collisionMilliseconds;
@@ -432,7 +432,9 @@ SolverResult TrainingScene::stepBesideVisualHalf()
   return result;
 }
 
-void TrainingScene::takeCut(const InstrumentActionResult& done)
+// The pieces a cut took into the metrics (in or outside the task's target
+// region), and the rim measured again.
+void TrainingScene::takeRemovedPieces(const InstrumentActionResult& done)
 {
   Metrics.removedVolume += done.removedVolume;
   for (std::size_t p = 0; p < done.report.handedOver.size(); ++p)

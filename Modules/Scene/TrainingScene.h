@@ -147,7 +147,7 @@ private:
   void buildCutting();
   void biteAtLoad();
   void measureRim();
-  void takeCut(const InstrumentActionResult& done);
+  void takeRemovedPieces(const InstrumentActionResult& done);
   SolverResult stepBesideVisualHalf();
   void buildWrinkles(const HexahedralMesh& hexahedra, const TriangleMesh& surface);
   void buildContacts();
