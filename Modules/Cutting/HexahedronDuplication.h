@@ -22,7 +22,6 @@
 
 #include <cstdint>
 #include <utility>
-
 #include <vector>
 
 namespace thintissue
@@ -101,8 +100,8 @@ private:
   {
     std::vector<std::pair<std::uint64_t, int>> edges; ///< (edge, local triangle)
     std::vector<int> triangles;                       ///< of the hexahedron analysed
-    std::vector<int> rootOf;                          ///< per local triangle or hexahedron
-    std::vector<int> size;                            ///< per root
+    std::vector<int> rootOf;                          ///< per triangle of `triangles`
+    std::vector<int> size;                            ///< per root (branch or node group)
     std::vector<int> roots;                           ///< by size, ties by lowest index
     std::vector<int> around;                          ///< hexahedra around a node
     std::vector<int> nodeOfGroup;

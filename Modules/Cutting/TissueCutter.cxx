@@ -569,8 +569,8 @@ void TissueCutter::finishVisualCut(TissueCutReport& report)
   const auto start = Clock::now();
   // A removal that changed no collision triangle has no visual cut to
   // follow, only its pieces.
-  const bool cut = report.collision.changed() && !VisualFailed;
-  if (!cut || followWithVisualCut(report))
+  const bool visualToCut = report.collision.changed() && !VisualFailed;
+  if (!visualToCut || followWithVisualCut(report))
   {
     const auto removalStart = Clock::now();
     for (const PendingPieceVisual& pending : PendingPieces)
